@@ -1,0 +1,36 @@
+# is_graphs: the two commands are `make demo` (the main job) and `make test` (the whole suite).
+# Both install what is missing (scripts/setup.sh), build the catkin workspace in .ws/ and run.
+SHELL := /bin/bash
+# Debian's ROS Python lives in /usr/bin/python3: keep it ahead of any pyenv or venv on PATH.
+export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
+export ROS_HOME ?= $(CURDIR)/.ws/ros_home
+
+.PHONY: all setup build demo test bench-conversion buildings clean format
+
+all: build
+
+setup:
+	@bash scripts/setup.sh
+
+build: setup
+	@bash scripts/build.sh
+
+demo: build  ## BIM=path/to/building.ifc to load another building
+	@bash scripts/demo.sh
+
+test: build
+	@bash scripts/test.sh
+
+# Regenerates bim/*.ifc from bim/layouts/*.yaml.
+buildings: setup
+	@.venv/bin/python3 scripts/make_building.py --all
+
+# Conversion time and peak memory for the real IFC files and the project's buildings.
+bench-conversion: setup
+	@bash scripts/bench_conversion.sh
+
+format:
+	@clang-format -i $$(git ls-files '*.h' '*.cpp')
+
+clean:
+	rm -rf .ws

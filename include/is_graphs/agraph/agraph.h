@@ -1,0 +1,112 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "is_graphs/geometry/plane.h"
+
+namespace is_graphs {
+namespace agraph {
+
+// The Architectural Graph, in the BIM frame; see docs/agraph_format.md for every field.
+// Ids are dense indices into their own vector.
+
+struct Storey {
+  int id{0};
+  long ifc_id{-1};
+  std::string guid;
+  std::string name;
+  double elevation{0.0};
+  double height{0.0};
+};
+
+struct WallSurface {
+  int id{0};
+  long ifc_id{-1};
+  std::string guid;
+  int wall{-1};
+  int storey{0};
+  geometry::Plane plane;  // normal points out of the wall material
+  geometry::Orientation orientation{geometry::Orientation::kOther};
+  Eigen::Vector2d start{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d end{Eigen::Vector2d::Zero()};
+  double z_min{0.0};
+  double z_max{0.0};
+  std::vector<int> rooms;
+
+  /// Horizontal unit tangent t = ẑ × normal; (end - start) · t > 0.
+  Eigen::Vector3d Tangent() const;
+  double Length() const { return (end - start).norm(); }
+};
+
+struct Wall {
+  int id{0};
+  long ifc_id{-1};
+  std::string guid;
+  std::string name;
+  int storey{0};
+  int surface_a{-1};
+  int surface_b{-1};
+  double thickness{0.0};
+  Eigen::Vector3d start{Eigen::Vector3d::Zero()};   // wall point w_s
+  Eigen::Vector3d center{Eigen::Vector3d::Zero()};  // wall centre
+  double length{0.0};
+  double height{0.0};
+  bool external{false};
+};
+
+struct Room {
+  int id{0};
+  long ifc_id{-1};
+  std::string guid;
+  std::string name;
+  std::string long_name;
+  int storey{0};
+  std::vector<Eigen::Vector2d> polygon;  // counter-clockwise, not closed
+  double z_min{0.0};
+  double z_max{0.0};
+  Eigen::Vector3d center{Eigen::Vector3d::Zero()};
+  double area{0.0};
+  std::vector<int> surfaces;
+  std::vector<int> walls;
+  std::vector<int> doorways;
+};
+
+struct Doorway {
+  int id{0};
+  long ifc_id{-1};
+  std::string guid;
+  std::string name;
+  int storey{0};
+  int wall{-1};
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};
+  double width{0.0};
+  double height{0.0};
+  std::vector<int> rooms;  // two, or one for a door to outdoors
+};
+
+struct SourceInfo {
+  std::string file;
+  std::string sha256;
+  std::string schema;
+  std::string application;
+  double length_unit_m{1.0};
+  std::string converter_version;
+};
+
+struct AGraph {
+  int format_version{1};
+  SourceInfo source;
+  std::string building;
+  std::string mesh;  // path of the OBJ mesh, resolved against the A-Graph file's folder; "" if none
+  std::vector<Storey> storeys;
+  std::vector<WallSurface> surfaces;
+  std::vector<Wall> walls;
+  std::vector<Room> rooms;
+  std::vector<Doorway> doorways;
+  std::vector<std::string> warnings;
+};
+
+}  // namespace agraph
+}  // namespace is_graphs

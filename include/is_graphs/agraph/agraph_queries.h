@@ -1,0 +1,31 @@
+#pragma once
+
+#include <string>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/common/result.h"
+
+namespace is_graphs {
+namespace agraph {
+
+/// Index of the storey named `storey`, or, when no storey has that name, `storey` read as a
+/// numeric index. The error lists the storeys there are.
+Result<int> FindStorey(const AGraph& graph, const std::string& storey);
+
+/// The sub-graph of one storey (by index), with ids re-indexed densely and references to
+/// elements outside the storey dropped: walls of the storey with their surfaces, its rooms and
+/// its doorways (a doorway left without rooms is dropped, with a warning). The result has one
+/// storey (id 0).
+Result<AGraph> SelectStorey(const AGraph& graph, int storey_index);
+/// As above, the storey given by name or numeric index (see FindStorey).
+Result<AGraph> SelectStorey(const AGraph& graph, const std::string& storey);
+
+/// Area of a simple polygon (positive when counter-clockwise).
+double SignedArea(const std::vector<Eigen::Vector2d>& polygon);
+
+/// A multi-line human summary: building and source, then per storey the counts of surfaces
+/// (x / y / other), walls, rooms (with names and areas) and doorways; the number of warnings.
+std::string Summarize(const AGraph& graph);
+
+}  // namespace agraph
+}  // namespace is_graphs

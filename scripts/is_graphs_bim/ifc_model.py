@@ -1,0 +1,217 @@
+"""Opening an IFC file safely: input checks, schema, units, storeys, diagnostics.
+
+Everything that can go wrong with the input is reported as a `ConversionError` (fatal) or through
+`Diagnostics.warn` (the conversion goes on); never as a Python traceback.
+"""
+import hashlib
+import os
+import re
+import sys
+from dataclasses import dataclass, field
+
+import ifcopenshell
+import ifcopenshell.util.element as uelement
+import ifcopenshell.util.placement as uplacement
+import ifcopenshell.util.unit as uunit
+
+PROG = "ifc_to_agraph"
+_SI_PREFIXES = {"EXA", "PETA", "TERA", "GIGA", "MEGA", "KILO", "HECTO", "DECA", "DECI", "CENTI",
+                "MILLI", "MICRO", "NANO", "PICO", "FEMTO", "ATTO"}
+
+
+def entity_label(entity):
+    """'IfcWall #123' for an entity, '' for None."""
+    return "" if entity is None else f"{entity.is_a()} #{entity.id()}"
+
+
+class ConversionError(Exception):
+    """A fatal input problem; `entity` (optional) is the IFC entity it is about."""
+
+    def __init__(self, what, entity=None):
+        super().__init__(what)
+        self.what = what
+        self.entity = entity
+
+    def line(self, file_name):
+        where = f"{entity_label(self.entity)}: " if self.entity is not None else ""
+        return f"{PROG}: error: {file_name}: {where}{self.what}"
+
+
+@dataclass
+class Diagnostics:
+    """Collects warnings (for the JSON) and echoes them to stderr as they happen."""
+    file_name: str
+    echo: bool = True
+    warnings: list = field(default_factory=list)
+
+    def warn(self, what, entity=None):
+        text = f"{entity_label(entity)}: {what}" if entity is not None else what
+        self.warnings.append(text)
+        if self.echo:
+            print(f"{PROG}: warning: {self.file_name}: {text}", file=sys.stderr)
+
+
+@dataclass
+class IfcModel:
+    path: str
+    file: object            # ifcopenshell.file
+    sha256: str
+    schema: str
+    application: str
+    length_unit_m: float     # metres per file length unit
+    building_name: str
+
+
+def _check_bytes(path, data):
+    head = data[:4096].lstrip(b"\xef\xbb\xbf \t\r\n")
+    if head.startswith(b"PK\x03\x04"):
+        raise ConversionError("is a ZIP archive (.ifczip?): unzip it first; only IFC-SPF text "
+                              "(ISO-10303-21) files are read")
+    if head.startswith(b"<"):
+        raise ConversionError("is XML (ifcXML?): only IFC-SPF text (ISO-10303-21) files are read")
+    if not head.startswith(b"ISO-10303-21;"):
+        raise ConversionError("not an IFC file: it does not start with 'ISO-10303-21;' "
+                              "(an IFC-SPF STEP file is expected)")
+    if b"FILE_SCHEMA" not in head:
+        raise ConversionError("not an IFC file: no FILE_SCHEMA in its header")
+    tail = data[-256:].rstrip(b" \t\r\n\x00\x1a")
+    if not tail.endswith(b"END-ISO-10303-21;"):
+        raise ConversionError("truncated IFC file: it does not end with 'END-ISO-10303-21;' "
+                              "(cut off while copying or exporting?)")
+    if data.count(b"ENDSEC;") < 2:
+        raise ConversionError("truncated or malformed IFC file: HEADER or DATA section not closed")
+
+
+_ENTITY_LINE = re.compile(rb"(?m)^[ \t]*#\d+[ \t]*=")
+_SI_LENGTH = re.compile(rb"#(\d+)\s*=\s*IFCSIUNIT\s*\(\s*\*\s*,\s*\.LENGTHUNIT\.\s*,"
+                        rb"\s*\.([A-Za-z_]+)\.\s*,", re.IGNORECASE)
+
+
+def _unknown_prefixes(data):
+    """[(step id, prefix)] of SI length units whose prefix IfcOpenShell would silently drop."""
+    return [(int(m.group(1)), m.group(2).decode("ascii", "replace"))
+            for m in _SI_LENGTH.finditer(data) if m.group(2).upper().decode() not in _SI_PREFIXES]
+
+
+def _length_unit(f, diag):
+    """Metres per file length unit, with warnings for missing or odd unit assignments."""
+    assignments = f.by_type("IfcUnitAssignment")
+    if not assignments:
+        diag.warn("no IfcUnitAssignment in the file: assuming lengths are in metres")
+        return 1.0, True
+    length_units = [u for u in (assignments[0].Units or [])
+                    if getattr(u, "UnitType", None) == "LENGTHUNIT"]
+    if not length_units:
+        diag.warn("no length unit in the IfcUnitAssignment: assuming metres")
+        return 1.0, True
+    unit = length_units[0]
+    if unit.is_a("IfcSIUnit"):
+        if unit.Name != "METRE":
+            diag.warn(f"length unit is {unit.Name}, not METRE: assuming metres", unit)
+            return 1.0, True
+        if unit.Prefix is not None and unit.Prefix not in _SI_PREFIXES:
+            diag.warn(f"unknown SI prefix {unit.Prefix!r} on the length unit: assuming metres", unit)
+            return 1.0, True
+    try:
+        scale = float(uunit.calculate_unit_scale(f))
+    except Exception as exc:  # odd conversion-based units
+        diag.warn(f"cannot evaluate the length unit ({exc}): assuming metres", unit)
+        return 1.0, True
+    if not (scale > 0.0 and scale < 1e6):
+        diag.warn(f"length unit scale {scale} is not usable: assuming metres", unit)
+        return 1.0, True
+    return scale, False
+
+
+def open_model(path, diag):
+    """Reads and checks `path`; returns (IfcModel, forced_unit) or raises ConversionError."""
+    if not os.path.exists(path):
+        raise ConversionError("no such file")
+    if os.path.isdir(path):
+        raise ConversionError("is a directory, not an IFC file")
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read()
+    except OSError as exc:
+        raise ConversionError(f"cannot read: {exc.strerror}") from None
+    if not data:
+        raise ConversionError("empty file")
+    _check_bytes(path, data)
+    try:
+        f = ifcopenshell.open(path)
+    except Exception as exc:
+        raise ConversionError(f"IfcOpenShell cannot parse it: {str(exc).strip() or type(exc).__name__}"
+                              ) from None
+    try:
+        parsed = len(f.wrapped_data.entity_names())
+    except Exception:
+        parsed = None
+    expected = len(_ENTITY_LINE.findall(data))
+    if parsed is not None and parsed < expected:
+        raise ConversionError(f"damaged or truncated IFC file: only {parsed} of {expected} entity "
+                              "instances could be read (the DATA section is cut or malformed)")
+    if len(f.by_type("IfcProject")) == 0:
+        raise ConversionError("no IfcProject: not a complete IFC model (truncated?)")
+    bad_prefix = _unknown_prefixes(data)
+    if bad_prefix:
+        sid, prefix = bad_prefix[0]
+        diag.warn(f"unknown SI prefix .{prefix}. on the length unit: ignored, assuming metres",
+                  f.by_id(sid))
+        scale, forced = 1.0, True
+    else:
+        scale, forced = _length_unit(f, diag)
+    apps = sorted(f.by_type("IfcApplication"), key=lambda a: a.id())
+    app = apps[0].ApplicationFullName or "" if apps else ""
+    buildings = sorted(f.by_type("IfcBuilding"), key=lambda b: b.id())
+    stem = os.path.splitext(os.path.basename(path))[0]
+    name = (buildings[0].Name or buildings[0].LongName or "") if buildings else ""
+    model = IfcModel(path=path, file=f, sha256=hashlib.sha256(data).hexdigest(), schema=f.schema,
+                     application=app, length_unit_m=scale, building_name=name or stem)
+    return model, forced
+
+
+def placement_z(product, scale):
+    """World z (metres) of a product's local placement origin, None if it has none."""
+    if getattr(product, "ObjectPlacement", None) is None:
+        return None
+    try:
+        return float(uplacement.get_local_placement(product.ObjectPlacement)[2][3]) * scale
+    except Exception:
+        return None
+
+
+def storey_of(element):
+    """The IfcBuildingStorey an element belongs to (containment, aggregation, voids, fills)."""
+    seen = 0
+    current = element
+    while current is not None and seen < 12:
+        if current.is_a("IfcBuildingStorey"):
+            return current
+        seen += 1
+        nxt = uelement.get_container(current) or uelement.get_aggregate(current)
+        if nxt is None and current.is_a("IfcOpeningElement"):
+            rels = getattr(current, "VoidsElements", None) or ()
+            nxt = rels[0].RelatingBuildingElement if rels else None
+        if nxt is None:
+            rels = getattr(current, "FillsVoids", None) or ()
+            nxt = rels[0].RelatingOpeningElement if rels else None
+        current = nxt
+    return None
+
+
+def list_storeys(model):
+    """[(entity, elevation_m)] sorted by elevation then STEP id."""
+    out = []
+    for s in model.file.by_type("IfcBuildingStorey"):
+        z = placement_z(s, model.length_unit_m)
+        if z is None:
+            z = float(s.Elevation or 0.0) * model.length_unit_m
+        out.append((s, z))
+    out.sort(key=lambda se: (se[1], se[0].id()))
+    return out
+
+
+def wall_is_external(wall):
+    """Pset_WallCommon.IsExternal as a bool, None when absent."""
+    value = uelement.get_psets(wall).get("Pset_WallCommon", {}).get("IsExternal")
+    return None if value is None else bool(value)

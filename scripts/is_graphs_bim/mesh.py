@@ -1,0 +1,93 @@
+"""Triangulating every element with IfcOpenShell, and writing the building mesh (OBJ)."""
+import os
+from dataclasses import dataclass
+
+import numpy as np
+import ifcopenshell
+import ifcopenshell.geom
+
+# Not written to the mesh (spaces are air, openings are already cut out of their walls).
+NOT_IN_MESH = ("IfcSpace", "IfcOpeningElement")
+
+
+@dataclass
+class Shape:
+    """One element's triangles in world coordinates (metres, bim frame)."""
+    id: int
+    ifc_class: str
+    verts: np.ndarray   # (N, 3) float64
+    faces: np.ndarray   # (M, 3) int64
+
+    def triangle_normals_areas(self):
+        """(unit normals (M,3), areas (M,), centroids (M,3)) of the triangles."""
+        a, b, c = (self.verts[self.faces[:, k]] for k in range(3))
+        cross = np.cross(b - a, c - a)
+        norm = np.linalg.norm(cross, axis=1)
+        ok = norm > 0
+        normals = np.zeros_like(cross)
+        normals[ok] = cross[ok] / norm[ok, None]
+        return normals, 0.5 * norm, (a + b + c) / 3.0
+
+
+def _silence_ifcopenshell_log():
+    """IfcOpenShell logs geometry failures itself; we report them our own way."""
+    try:
+        ifcopenshell.ifcopenshell_wrapper.set_log_format_json()
+        ifcopenshell.ifcopenshell_wrapper.turn_off_detailed_logging()
+    except Exception:
+        pass
+
+
+def triangulate(model, force_metres=False):
+    """{step id: Shape} for every product with a 3D body, in world coordinates, metres."""
+    settings = ifcopenshell.geom.settings()
+    settings.set("use-world-coords", True)
+    settings.set("weld-vertices", True)
+    if force_metres:
+        settings.set("length-unit", 1.0)
+    _silence_ifcopenshell_log()
+    threads = max(1, min(8, os.cpu_count() or 1))
+    shapes = {}
+    it = ifcopenshell.geom.iterator(settings, model.file, threads)
+    try:
+        ok = it.initialize()
+    except Exception:
+        ok = False
+    if not ok:
+        return shapes
+    while True:
+        shape = it.get()
+        geom = shape.geometry
+        faces = np.asarray(geom.faces, dtype=np.int64).reshape(-1, 3)
+        if len(faces):
+            verts = np.asarray(geom.verts, dtype=np.float64).reshape(-1, 3)
+            entity = model.file.by_id(shape.id)
+            shapes[shape.id] = Shape(shape.id, entity.is_a(), verts, faces)
+        if not it.next():
+            break
+    return shapes
+
+
+def _fmt(x):
+    s = f"{x:.6f}"
+    return "0.000000" if s == "-0.000000" else s
+
+
+def write_obj(path, shapes, header=""):
+    """Writes every shape but spaces and openings, sorted by STEP id, one `o` per element."""
+    lines = ["# is_graphs building mesh: metres, bim frame, z up; one object per IFC element"]
+    if header:
+        lines.append(f"# {header}")
+    base = 1
+    for sid in sorted(shapes):
+        shape = shapes[sid]
+        if shape.ifc_class in NOT_IN_MESH:
+            continue
+        lines.append(f"o {shape.ifc_class}#{sid}")
+        v = np.round(shape.verts, 6) + 0.0
+        lines.extend(f"v {_fmt(x)} {_fmt(y)} {_fmt(z)}" for x, y, z in v.tolist())
+        f = shape.faces + base
+        lines.extend(f"f {a} {b} {c}" for a, b, c in f.tolist())
+        base += len(v)
+    with open(path, "w", encoding="utf-8", newline="\n") as fh:
+        fh.write("\n".join(lines) + "\n")

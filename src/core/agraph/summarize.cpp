@@ -1,0 +1,71 @@
+#include <iomanip>
+#include <sstream>
+
+#include "is_graphs/agraph/agraph_queries.h"
+
+namespace is_graphs {
+namespace agraph {
+
+double SignedArea(const std::vector<Eigen::Vector2d>& polygon) {
+  double twice_area = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
+    twice_area += a.x() * b.y() - b.x() * a.y();
+  }
+  return 0.5 * twice_area;
+}
+
+std::string Summarize(const AGraph& graph) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2);
+  out << "building: " << (graph.building.empty() ? "(unnamed)" : graph.building) << "\n";
+  out << "source:   " << (graph.source.file.empty() ? "(unknown)" : graph.source.file);
+  if (!graph.source.schema.empty()) out << ", " << graph.source.schema;
+  if (!graph.source.application.empty()) out << ", " << graph.source.application;
+  out << ", unit " << graph.source.length_unit_m << " m\n";
+  out << "mesh:     " << (graph.mesh.empty() ? "(none)" : graph.mesh) << "\n";
+  out << "storeys:  " << graph.storeys.size() << "\n";
+
+  for (const Storey& storey : graph.storeys) {
+    int x = 0, y = 0, other = 0, walls = 0, doorways = 0, exterior_doorways = 0;
+    for (const WallSurface& s : graph.surfaces) {
+      if (s.storey != storey.id) continue;
+      if (s.orientation == geometry::Orientation::kX) {
+        ++x;
+      } else if (s.orientation == geometry::Orientation::kY) {
+        ++y;
+      } else {
+        ++other;
+      }
+    }
+    for (const Wall& w : graph.walls) walls += w.storey == storey.id;
+    for (const Doorway& d : graph.doorways) {
+      if (d.storey != storey.id) continue;
+      ++doorways;
+      exterior_doorways += d.rooms.size() == 1;
+    }
+    std::vector<const Room*> rooms;
+    for (const Room& r : graph.rooms) {
+      if (r.storey == storey.id) rooms.push_back(&r);
+    }
+    out << "storey " << storey.id << " \"" << storey.name << "\" (elevation " << storey.elevation
+        << " m, height " << storey.height << " m)\n";
+    out << "  wall surfaces: " << x + y + other << " (x " << x << ", y " << y << ", other " << other
+        << ")\n";
+    out << "  walls:         " << walls << "\n";
+    out << "  doorways:      " << doorways << " (" << exterior_doorways << " to outdoors)\n";
+    out << "  rooms:         " << rooms.size() << "\n";
+    for (const Room* r : rooms) {
+      out << "    " << std::setw(3) << r->id << "  " << r->name;
+      if (!r->long_name.empty()) out << " \"" << r->long_name << "\"";
+      out << "  " << r->area << " m^2, " << r->surfaces.size() << " surfaces, " << r->doorways.size()
+          << " doorways\n";
+    }
+  }
+  out << "warnings: " << graph.warnings.size() << "\n";
+  return out.str();
+}
+
+}  // namespace agraph
+}  // namespace is_graphs

@@ -1,0 +1,148 @@
+#include <ceres/problem.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fixtures.h"
+#include "is_graphs/agraph/agraph_io.h"
+#include "is_graphs/agraph/agraph_problem.h"
+
+namespace is_graphs {
+namespace agraph {
+namespace {
+
+AGraph TwoRooms() { return LoadAGraph(testing::TwoRoomsPath()).value(); }
+
+void ExpectSameGeometry(const AGraph& a, const AGraph& b, double tolerance) {
+  for (size_t i = 0; i < a.surfaces.size(); ++i) {
+    EXPECT_LT((a.surfaces[i].plane.normal - b.surfaces[i].plane.normal).norm(), tolerance) << i;
+    EXPECT_NEAR(a.surfaces[i].plane.d, b.surfaces[i].plane.d, tolerance) << i;
+  }
+  for (size_t i = 0; i < a.walls.size(); ++i) {
+    EXPECT_LT((a.walls[i].center - b.walls[i].center).norm(), tolerance) << "wall " << i;
+  }
+  for (size_t i = 0; i < a.rooms.size(); ++i) {
+    EXPECT_LT((a.rooms[i].center - b.rooms[i].center).norm(), tolerance) << "room " << i;
+  }
+  for (size_t i = 0; i < a.doorways.size(); ++i) {
+    EXPECT_LT((a.doorways[i].position - b.doorways[i].position).norm(), tolerance) << i;
+  }
+}
+
+TEST(AGraphProblemConfig, Validate) {
+  EXPECT_EQ(AGraphProblemConfig().Validate(), "");
+  AGraphProblemConfig config;
+  config.wall_centre_sigma = -0.1;
+  EXPECT_NE(config.Validate().find("wall_centre_sigma"), std::string::npos);
+  config = AGraphProblemConfig();
+  config.huber_scale = -1.0;
+  EXPECT_NE(config.Validate().find("huber_scale"), std::string::npos);
+  config = AGraphProblemConfig();
+  config.max_iterations = 0;
+  EXPECT_NE(config.Validate().find("max_iterations"), std::string::npos);
+  config = AGraphProblemConfig();
+  config.huber_scale = 0.0;  // no robust loss: valid
+  EXPECT_EQ(config.Validate(), "");
+}
+
+TEST(AGraphProblem, ConsistentGraphStaysPut) {
+  const AGraph bim = TwoRooms();
+  AGraphProblem problem(bim);
+  const AGraphSolveSummary summary = problem.Solve();
+  EXPECT_TRUE(summary.usable) << summary.ToString();
+  EXPECT_LT(summary.initial_cost, 1e-20);
+  EXPECT_LT(summary.final_cost, 1e-20);
+  EXPECT_EQ(summary.parameter_blocks, 29);  // 10 × (normal, d) + 5 walls + 2 rooms + 2 doorways
+  EXPECT_EQ(summary.residual_blocks, 20);   // 10 plane, 5 wall, 2 room priors, 3 doorway–room
+  AGraph out = bim;
+  ASSERT_TRUE(problem.WriteBack(out));
+  ExpectSameGeometry(out, bim, 1e-12);
+}
+
+TEST(AGraphProblem, PerturbedWallCentreReturns) {
+  const AGraph bim = TwoRooms();
+  AGraph perturbed = bim;
+  perturbed.walls[4].center += Eigen::Vector3d(0.2, 0.0, 0.0);  // the interior wall, x = 4.0
+  AGraphProblem problem(perturbed);
+  const AGraphSolveSummary summary = problem.Solve();
+  ASSERT_TRUE(summary.usable) << summary.ToString();
+  EXPECT_GT(summary.initial_cost, summary.final_cost);
+  EXPECT_LT(summary.final_cost, 1e-12);
+  AGraph out = perturbed;
+  ASSERT_TRUE(problem.WriteBack(out));
+  EXPECT_LT((out.walls[4].center - Eigen::Vector3d(4.0, 2.0, 0.0)).norm(), 1e-6)
+      << out.walls[4].center.transpose();
+  ExpectSameGeometry(out, bim, 1e-6);
+}
+
+TEST(AGraphProblem, PerturbedRoomAndDoorwayReturn) {
+  const AGraph bim = TwoRooms();
+  AGraph perturbed = bim;
+  perturbed.rooms[1].center += Eigen::Vector3d(0.0, 0.3, 0.0);
+  perturbed.doorways[0].position += Eigen::Vector3d(-0.1, 0.1, 0.0);
+  // Only the initial values move; the measurements are the BIM's.
+  AGraphProblem problem(bim);
+  problem.RoomCentre(1)[1] += 0.3;
+  problem.DoorwayPosition(0)[0] -= 0.1;
+  problem.DoorwayPosition(0)[1] += 0.1;
+  const AGraphSolveSummary summary = problem.Solve();
+  ASSERT_TRUE(summary.usable) << summary.ToString();
+  EXPECT_LT(summary.final_cost, 1e-12);
+  AGraph out = perturbed;
+  ASSERT_TRUE(problem.WriteBack(out));
+  ExpectSameGeometry(out, bim, 1e-6);
+}
+
+TEST(AGraphProblem, NonParallelWallFacesGiveAFiniteSolution) {
+  AGraph bim = TwoRooms();
+  const double a = 5.0 * M_PI / 180.0;  // face 9 of the interior wall tilted by 5° about z
+  bim.surfaces[9].plane = geometry::Plane::FromPointNormal(
+      Eigen::Vector3d(4.1, 2.0, 0.0), Eigen::Vector3d(std::cos(a), std::sin(a), 0.0));
+  AGraphProblem problem(bim);
+  const AGraphSolveSummary summary = problem.Solve();
+  ASSERT_TRUE(summary.usable) << summary.ToString();
+  EXPECT_TRUE(std::isfinite(summary.final_cost));
+  AGraph out = bim;
+  ASSERT_TRUE(problem.WriteBack(out));
+  EXPECT_TRUE(out.walls[4].center.allFinite());
+  EXPECT_TRUE(out.surfaces[9].plane.normal.allFinite());
+  EXPECT_NEAR(out.surfaces[9].plane.normal.norm(), 1.0, 1e-9);
+  // w_s = (4, 2, 0) lies on both faces' mid-plane near the wall: the centre stays close to it.
+  EXPECT_LT((out.walls[4].center - Eigen::Vector3d(4.0, 2.0, 0.0)).norm(), 0.02);
+}
+
+TEST(AGraphProblem, AddToALargerProblem) {
+  const AGraph bim = TwoRooms();
+  AGraphProblem agraph(bim);
+  ceres::Problem problem;
+  double other[2] = {1.0, 2.0};  // e.g. the merger's own blocks
+  problem.AddParameterBlock(other, 2);
+  agraph.AddTo(problem);
+  EXPECT_EQ(problem.NumParameterBlocks(), 30);
+  EXPECT_EQ(problem.NumResidualBlocks(), 20);
+  EXPECT_EQ(problem.NumResiduals(), 60);
+  ASSERT_TRUE(problem.HasParameterBlock(agraph.SurfaceNormal(3)));
+  EXPECT_NE(problem.GetManifold(agraph.SurfaceNormal(3)), nullptr);
+  EXPECT_EQ(problem.ParameterBlockTangentSize(agraph.SurfaceNormal(3)), 2);
+  EXPECT_EQ(problem.GetManifold(agraph.WallCentre(0)), nullptr);
+  EXPECT_DOUBLE_EQ(agraph.WallCentre(4)[0], 4.0);
+  EXPECT_DOUBLE_EQ(*agraph.SurfaceOffset(3), 8.2);
+}
+
+TEST(AGraphProblem, WriteBackNeedsTheSameGraph) {
+  AGraphProblem problem(TwoRooms());
+  AGraph other = TwoRooms();
+  other.rooms.pop_back();
+  EXPECT_FALSE(problem.WriteBack(other));
+}
+
+TEST(AGraphProblem, EmptyGraph) {
+  AGraphProblem problem{AGraph()};
+  const AGraphSolveSummary summary = problem.Solve();
+  EXPECT_TRUE(summary.usable);
+  EXPECT_EQ(summary.residual_blocks, 0);
+}
+
+}  // namespace
+}  // namespace agraph
+}  // namespace is_graphs

@@ -1,0 +1,8 @@
+// The gtest main of test_core (catkin_add_gtest links gtest without gtest_main).
+
+#include <gtest/gtest.h>
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
