@@ -2,23 +2,11 @@
 
 #include <algorithm>
 
+#include "point_conversions.h"
+
 namespace is_graphs {
 namespace ros_conversions {
 namespace {
-
-geometry_msgs::Point ToPoint(const Eigen::Vector3d& p) {
-  geometry_msgs::Point out;
-  out.x = p.x();
-  out.y = p.y();
-  out.z = p.z();
-  return out;
-}
-
-geometry_msgs::Point ToPoint(const Eigen::Vector2d& p, double z) {
-  return ToPoint(Eigen::Vector3d(p.x(), p.y(), z));
-}
-
-Eigen::Vector3d FromPoint(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
 
 template <typename Out, typename In>
 std::vector<Out> CastIds(const std::vector<In>& ids) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "point_conversions.h"
+
 namespace is_graphs {
 namespace ros_markers {
 namespace {
@@ -19,13 +21,7 @@ std_msgs::ColorRGBA Color(float r, float g, float b, float a) {
   return c;
 }
 
-geometry_msgs::Point Pt(const Eigen::Vector3d& p) {
-  geometry_msgs::Point out;
-  out.x = p.x();
-  out.y = p.y();
-  out.z = p.z();
-  return out;
-}
+using ros_conversions::ToPoint;
 
 std_msgs::ColorRGBA OrientationColor(geometry::Orientation o, float alpha) {
   switch (o) {
@@ -79,13 +75,13 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
     const Eigen::Vector3d a = SurfaceCorner(s, false, false), b = SurfaceCorner(s, true, false),
                           c = SurfaceCorner(s, true, true), d = SurfaceCorner(s, false, true);
     for (const Eigen::Vector3d& p : {a, b, c, a, c, d}) {
-      surfaces.points.push_back(Pt(p));
+      surfaces.points.push_back(ToPoint(p));
       surfaces.colors.push_back(OrientationColor(s.orientation, style.surface_alpha));
     }
-    for (const auto& [p, q] : {std::make_pair(a, b), std::make_pair(b, c), std::make_pair(c, d),
-                               std::make_pair(d, a)}) {
-      outlines.points.push_back(Pt(p));
-      outlines.points.push_back(Pt(q));
+    for (const auto& [p, q] :
+         {std::make_pair(a, b), std::make_pair(b, c), std::make_pair(c, d), std::make_pair(d, a)}) {
+      outlines.points.push_back(ToPoint(p));
+      outlines.points.push_back(ToPoint(q));
     }
   }
   outlines.color = Color(0.2f, 0.2f, 0.2f, 0.8f);
@@ -96,11 +92,11 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
   wall_edges.color = Color(0.95f, 0.6f, 0.1f, 0.6f);
   for (const auto& w : graph.walls) {
     const Eigen::Vector3d c = lifted(w.center, wall_z);
-    walls.points.push_back(Pt(c));
+    walls.points.push_back(ToPoint(c));
     for (int sid : {w.surface_a, w.surface_b}) {
       if (sid < 0 || sid >= static_cast<int>(graph.surfaces.size())) continue;
-      wall_edges.points.push_back(Pt(c));
-      wall_edges.points.push_back(Pt(SurfaceMiddle(graph.surfaces[sid])));
+      wall_edges.points.push_back(ToPoint(c));
+      wall_edges.points.push_back(ToPoint(SurfaceMiddle(graph.surfaces[sid])));
     }
   }
 
@@ -113,22 +109,22 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
   visualization_msgs::MarkerArray out;
   for (const auto& r : graph.rooms) {
     const Eigen::Vector3d c = lifted(r.center, room_z);
-    rooms.points.push_back(Pt(c));
+    rooms.points.push_back(ToPoint(c));
     for (size_t i = 0; i < r.polygon.size(); ++i) {
       const auto& p = r.polygon[i];
       const auto& q = r.polygon[(i + 1) % r.polygon.size()];
-      room_outlines.points.push_back(Pt({p.x(), p.y(), r.z_min + 0.02}));
-      room_outlines.points.push_back(Pt({q.x(), q.y(), r.z_min + 0.02}));
+      room_outlines.points.push_back(ToPoint({p.x(), p.y(), r.z_min + 0.02}));
+      room_outlines.points.push_back(ToPoint({q.x(), q.y(), r.z_min + 0.02}));
     }
     for (int wid : r.walls) {
       if (wid < 0 || wid >= static_cast<int>(graph.walls.size())) continue;
-      room_edges.points.push_back(Pt(c));
-      room_edges.points.push_back(Pt(lifted(graph.walls[wid].center, wall_z)));
+      room_edges.points.push_back(ToPoint(c));
+      room_edges.points.push_back(ToPoint(lifted(graph.walls[wid].center, wall_z)));
     }
     if (style.draw_names) {
       Marker name = NewMarker(style, "room_names", Marker::TEXT_VIEW_FACING, 0.4);
       name.id = r.id;
-      name.pose.position = Pt(c + Eigen::Vector3d(0, 0, 0.5));
+      name.pose.position = ToPoint(c + Eigen::Vector3d(0, 0, 0.5));
       name.text = r.long_name.empty() ? r.name : r.name + " " + r.long_name;
       out.markers.push_back(name);
     }
@@ -140,16 +136,16 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
   doorway_edges.color = Color(0.1f, 0.75f, 0.85f, 0.6f);
   for (const auto& d : graph.doorways) {
     const Eigen::Vector3d p = lifted(d.position, room_z);
-    doorways.points.push_back(Pt(p));
+    doorways.points.push_back(ToPoint(p));
     for (int rid : d.rooms) {
       if (rid < 0 || rid >= static_cast<int>(graph.rooms.size())) continue;
-      doorway_edges.points.push_back(Pt(p));
-      doorway_edges.points.push_back(Pt(lifted(graph.rooms[rid].center, room_z)));
+      doorway_edges.points.push_back(ToPoint(p));
+      doorway_edges.points.push_back(ToPoint(lifted(graph.rooms[rid].center, room_z)));
     }
   }
 
-  for (Marker* m : {&surfaces, &outlines, &walls, &wall_edges, &rooms, &room_outlines,
-                    &room_edges, &doorways, &doorway_edges}) {
+  for (Marker* m : {&surfaces, &outlines, &walls, &wall_edges, &rooms, &room_outlines, &room_edges,
+                    &doorways, &doorway_edges}) {
     // rviz rejects list markers without points; an empty layer is simply not drawn.
     if (!m->points.empty()) out.markers.push_back(*m);
   }

@@ -1,7 +1,8 @@
 #pragma once
 
-#include <string>
 #include <visualization_msgs/MarkerArray.h>
+
+#include <string>
 
 #include "is_graphs/agraph/agraph.h"
 
@@ -14,7 +15,7 @@ struct AGraphMarkerStyle {
   std::string frame_id{"bim"};
   double layer_spacing{2.0};  // vertical distance between stacked layers [m]
   double surface_alpha{0.35};
-  double node_scale{0.3};     // sphere diameter of graph nodes [m]
+  double node_scale{0.3};  // sphere diameter of graph nodes [m]
   double line_width{0.03};
   bool draw_names{true};
 };

@@ -92,7 +92,8 @@ int Run(ros::NodeHandle& nh, const AGraphNodeParams& params) {
     }
     graph = std::move(selected).value();
   }
-  for (const auto& warning : graph.warnings) ROS_WARN("agraph_node: conversion: %s", warning.c_str());
+  for (const auto& warning : graph.warnings)
+    ROS_WARN("agraph_node: conversion: %s", warning.c_str());
   if (graph.rooms.empty()) ROS_WARN("agraph_node: %s has no rooms", params.bim_file.c_str());
 
   if (params.optimize) {

@@ -34,7 +34,8 @@ std::vector<Eigen::Vector3d> FromCloudMsg(const sensor_msgs::PointCloud2& cloud)
   points.reserve(static_cast<size_t>(cloud.width) * cloud.height);
   sensor_msgs::PointCloud2ConstIterator<float> x(cloud, "x"), y(cloud, "y"), z(cloud, "z");
   for (; x != x.end(); ++x, ++y, ++z) {
-    if (std::isfinite(*x) && std::isfinite(*y) && std::isfinite(*z)) points.emplace_back(*x, *y, *z);
+    if (std::isfinite(*x) && std::isfinite(*y) && std::isfinite(*z))
+      points.emplace_back(*x, *y, *z);
   }
   return points;
 }

@@ -1,8 +1,8 @@
 #pragma once
 
-#include <Eigen/Core>
 #include <sensor_msgs/PointCloud2.h>
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 

@@ -4,6 +4,7 @@
 #include <is_graphs/AGraph.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <sys/wait.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -14,7 +15,6 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <sys/wait.h>
 
 #include "../../src/ros/agraph_conversions.h"
 #include "../../src/ros/cloud_conversions.h"
@@ -69,8 +69,8 @@ TEST(AGraphNode, PublishesTheBuildingsAGraphLatched) {
       const auto& s = got.surfaces.at(sid);
       EXPECT_NE(std::find(s.rooms.begin(), s.rooms.end(), static_cast<int>(i)), s.rooms.end());
       const Eigen::Vector3d c(got.rooms[i].center.x(), got.rooms[i].center.y(), s.z_min);
-      EXPECT_GT(s.plane.SignedDistance(c), 0.0) << "surface " << sid << " faces away from room "
-                                                << got.rooms[i].name;
+      EXPECT_GT(s.plane.SignedDistance(c), 0.0)
+          << "surface " << sid << " faces away from room " << got.rooms[i].name;
     }
   }
   for (const auto& d : got.doorways) {
@@ -137,7 +137,8 @@ TEST(RobotDescription, GivesBaseLinkToVelodyne) {
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
   std::string error;
-  ASSERT_TRUE(buffer.canTransform("base_link", "velodyne", ros::Time(0), ros::Duration(20.0), &error))
+  ASSERT_TRUE(
+      buffer.canTransform("base_link", "velodyne", ros::Time(0), ros::Duration(20.0), &error))
       << error;
   const auto t = buffer.lookupTransform("base_link", "velodyne", ros::Time(0));
   EXPECT_NEAR(t.transform.translation.x, 0.1, 1e-6);
