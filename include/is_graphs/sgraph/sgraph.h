@@ -1,0 +1,75 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "is_graphs/geometry/plane.h"
+
+namespace is_graphs {
+namespace sgraph {
+
+// The Situational Graph in the map frame M, as the S-Graph node publishes it (msg/SGraph.msg).
+// Ids are stable across revisions but not necessarily dense (planes can be merged away);
+// references between elements use ids, not vector indices.
+
+struct Keyframe {
+  int id{0};
+  double stamp{0.0};  // seconds
+  Eigen::Isometry3d pose{Eigen::Isometry3d::Identity()};       // optimized, map <- base_link
+  Eigen::Isometry3d odom_pose{Eigen::Isometry3d::Identity()};  // measured, odom <- base_link
+  int previous{-1};                                            // id, -1 for the first keyframe
+  Eigen::Isometry3d relative_odom{Eigen::Isometry3d::Identity()};  // previous^-1 * this
+  Eigen::Matrix<double, 6, 6> odom_information{Eigen::Matrix<double, 6, 6>::Identity()};
+};
+
+struct Plane {
+  int id{0};
+  geometry::Plane plane;  // in M; normal points to the side the sensor saw it from
+  geometry::Orientation orientation{geometry::Orientation::kOther};
+  Eigen::Matrix4d covariance{Eigen::Matrix4d::Identity()};  // of (nx, ny, nz, d)
+  Eigen::Vector2d start{Eigen::Vector2d::Zero()};           // horizontal extent on the plane
+  Eigen::Vector2d end{Eigen::Vector2d::Zero()};
+  double z_min{0.0};
+  double z_max{0.0};
+  int num_points{0};
+};
+
+/// A keyframe's observation of a plane, in the keyframe's base_link frame.
+struct PlaneObservation {
+  int keyframe{0};
+  int plane{0};
+  geometry::Plane local;
+  Eigen::Matrix3d information{Eigen::Matrix3d::Identity()};  // on the plane's minimal tangent
+};
+
+enum class RoomType { kRoom = 0, kCorridor = 1 };
+
+struct Room {
+  int id{0};
+  RoomType type{RoomType::kRoom};
+  Eigen::Vector3d center{Eigen::Vector3d::Zero()};
+  std::vector<int> planes;     // plane ids
+  std::vector<int> keyframes;  // keyframe ids taken inside it
+  Eigen::Matrix3d information{Eigen::Matrix3d::Identity()};
+};
+
+struct Floor {
+  int id{0};
+  Eigen::Vector3d center{Eigen::Vector3d::Zero()};
+  double height{0.0};
+  std::vector<int> rooms;  // room ids
+};
+
+struct SGraph {
+  unsigned revision{0};
+  double stamp{0.0};
+  std::vector<Keyframe> keyframes;
+  std::vector<Plane> planes;
+  std::vector<PlaneObservation> observations;
+  std::vector<Room> rooms;
+  std::vector<Floor> floors;
+};
+
+}  // namespace sgraph
+}  // namespace is_graphs

@@ -1,0 +1,150 @@
+// Round trips of the message conversions: core graph -> message -> core graph keeps every field.
+#include <gtest/gtest.h>
+
+#include "../../src/ros/agraph_conversions.h"
+#include "../../src/ros/cloud_conversions.h"
+#include "../../src/ros/sgraph_conversions.h"
+#include "is_graphs/agraph/agraph_io.h"
+
+namespace is_graphs {
+namespace {
+
+TEST(AGraphConversions, RoundTripKeepsTheFixture) {
+  const auto loaded =
+      agraph::LoadAGraph(std::string(IS_GRAPHS_SOURCE_DIR) + "/test/data/two_rooms.agraph.json");
+  ASSERT_TRUE(loaded.ok()) << loaded.error();
+  const agraph::AGraph& a = loaded.value();
+  const agraph::AGraph b = ros_conversions::FromMsg(ros_conversions::ToMsg(a));
+  ASSERT_EQ(a.surfaces.size(), b.surfaces.size());
+  ASSERT_EQ(a.walls.size(), b.walls.size());
+  ASSERT_EQ(a.rooms.size(), b.rooms.size());
+  ASSERT_EQ(a.doorways.size(), b.doorways.size());
+  ASSERT_EQ(a.storeys.size(), b.storeys.size());
+  EXPECT_EQ(a.source.sha256, b.source.sha256);
+  for (size_t i = 0; i < a.surfaces.size(); ++i) {
+    EXPECT_EQ(a.surfaces[i].ifc_id, b.surfaces[i].ifc_id);
+    EXPECT_EQ(a.surfaces[i].wall, b.surfaces[i].wall);
+    EXPECT_EQ(a.surfaces[i].orientation, b.surfaces[i].orientation);
+    EXPECT_EQ(a.surfaces[i].rooms, b.surfaces[i].rooms);
+    EXPECT_DOUBLE_EQ(a.surfaces[i].plane.d, b.surfaces[i].plane.d);
+    EXPECT_TRUE(a.surfaces[i].plane.normal.isApprox(b.surfaces[i].plane.normal, 1e-12));
+    EXPECT_TRUE(a.surfaces[i].start.isApprox(b.surfaces[i].start));
+    EXPECT_TRUE(a.surfaces[i].end.isApprox(b.surfaces[i].end));
+    EXPECT_DOUBLE_EQ(a.surfaces[i].z_max, b.surfaces[i].z_max);
+  }
+  for (size_t i = 0; i < a.walls.size(); ++i) {
+    EXPECT_EQ(a.walls[i].surface_a, b.walls[i].surface_a);
+    EXPECT_EQ(a.walls[i].surface_b, b.walls[i].surface_b);
+    EXPECT_TRUE(a.walls[i].center.isApprox(b.walls[i].center));
+    EXPECT_TRUE(a.walls[i].start.isApprox(b.walls[i].start));
+    EXPECT_EQ(a.walls[i].external, b.walls[i].external);
+  }
+  for (size_t i = 0; i < a.rooms.size(); ++i) {
+    EXPECT_EQ(a.rooms[i].name, b.rooms[i].name);
+    EXPECT_EQ(a.rooms[i].surfaces, b.rooms[i].surfaces);
+    EXPECT_EQ(a.rooms[i].doorways, b.rooms[i].doorways);
+    ASSERT_EQ(a.rooms[i].polygon.size(), b.rooms[i].polygon.size());
+    for (size_t k = 0; k < a.rooms[i].polygon.size(); ++k)
+      EXPECT_TRUE(a.rooms[i].polygon[k].isApprox(b.rooms[i].polygon[k]));
+  }
+  for (size_t i = 0; i < a.doorways.size(); ++i) {
+    EXPECT_EQ(a.doorways[i].rooms, b.doorways[i].rooms);
+    EXPECT_EQ(a.doorways[i].wall, b.doorways[i].wall);
+    EXPECT_TRUE(a.doorways[i].position.isApprox(b.doorways[i].position));
+  }
+}
+
+sgraph::SGraph MakeSGraph() {
+  sgraph::SGraph g;
+  g.revision = 7;
+  for (int i = 0; i < 3; ++i) {
+    sgraph::Keyframe k;
+    k.id = 10 + i;
+    k.stamp = 100.0 + i;
+    k.pose = Eigen::Translation3d(i, 2.0 * i, 0.5) *
+             Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d::UnitZ());
+    k.odom_pose = Eigen::Translation3d(i + 0.1, 2.0 * i, 0.5) *
+                  Eigen::AngleAxisd(0.31 * i, Eigen::Vector3d::UnitZ());
+    k.previous = i == 0 ? -1 : 10 + i - 1;
+    k.relative_odom =
+        Eigen::Translation3d(1.0, 0.0, 0.0) * Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ());
+    k.odom_information = Eigen::Matrix<double, 6, 6>::Identity() * (i + 1);
+    k.odom_information(0, 5) = k.odom_information(5, 0) = 0.25;
+    g.keyframes.push_back(k);
+  }
+  sgraph::Plane p;
+  p.id = 4;
+  p.plane = geometry::Plane(Eigen::Vector3d(0.6, 0.8, 0.0), -2.5);
+  p.orientation = geometry::Orientation::kOther;
+  p.covariance = Eigen::Matrix4d::Identity() * 1e-4;
+  p.covariance(0, 3) = p.covariance(3, 0) = 2e-5;
+  p.start = {1.0, 2.0};
+  p.end = {3.0, 4.0};
+  p.z_min = 0.1;
+  p.z_max = 2.7;
+  p.num_points = 1234;
+  g.planes.push_back(p);
+  g.observations.push_back(
+      {11, 4, geometry::Plane(Eigen::Vector3d(0, 1, 0), 1.5), Eigen::Matrix3d::Identity() * 40.0});
+  sgraph::Room r;
+  r.id = 2;
+  r.type = sgraph::RoomType::kCorridor;
+  r.center = {1.0, -2.0, 0.0};
+  r.planes = {4, 5};
+  r.keyframes = {10, 11};
+  r.information = Eigen::Matrix3d::Identity() * 9.0;
+  g.rooms.push_back(r);
+  g.floors.push_back({0, Eigen::Vector3d(1.0, 1.0, 0.0), 0.0, {2}});
+  return g;
+}
+
+TEST(SGraphConversions, RoundTripKeepsEveryField) {
+  const sgraph::SGraph a = MakeSGraph();
+  const sgraph::SGraph b = ros_conversions::FromMsg(ros_conversions::ToMsg(a));
+  EXPECT_EQ(a.revision, b.revision);
+  ASSERT_EQ(a.keyframes.size(), b.keyframes.size());
+  for (size_t i = 0; i < a.keyframes.size(); ++i) {
+    EXPECT_EQ(a.keyframes[i].id, b.keyframes[i].id);
+    EXPECT_EQ(a.keyframes[i].previous, b.keyframes[i].previous);
+    EXPECT_NEAR(a.keyframes[i].stamp, b.keyframes[i].stamp, 1e-9);
+    EXPECT_TRUE(a.keyframes[i].pose.isApprox(b.keyframes[i].pose, 1e-12));
+    EXPECT_TRUE(a.keyframes[i].odom_pose.isApprox(b.keyframes[i].odom_pose, 1e-12));
+    EXPECT_TRUE(a.keyframes[i].relative_odom.isApprox(b.keyframes[i].relative_odom, 1e-12));
+    EXPECT_TRUE(a.keyframes[i].odom_information.isApprox(b.keyframes[i].odom_information));
+  }
+  ASSERT_EQ(b.planes.size(), 1u);
+  EXPECT_EQ(b.planes[0].id, 4);
+  EXPECT_EQ(b.planes[0].orientation, geometry::Orientation::kOther);
+  EXPECT_TRUE(b.planes[0].plane.normal.isApprox(a.planes[0].plane.normal));
+  EXPECT_DOUBLE_EQ(b.planes[0].plane.d, -2.5);
+  EXPECT_TRUE(b.planes[0].covariance.isApprox(a.planes[0].covariance));
+  EXPECT_TRUE(b.planes[0].start.isApprox(a.planes[0].start));
+  EXPECT_TRUE(b.planes[0].end.isApprox(a.planes[0].end));
+  EXPECT_EQ(b.planes[0].num_points, 1234);
+  ASSERT_EQ(b.observations.size(), 1u);
+  EXPECT_EQ(b.observations[0].keyframe, 11);
+  EXPECT_EQ(b.observations[0].plane, 4);
+  EXPECT_TRUE(b.observations[0].information.isApprox(a.observations[0].information));
+  ASSERT_EQ(b.rooms.size(), 1u);
+  EXPECT_EQ(b.rooms[0].type, sgraph::RoomType::kCorridor);
+  EXPECT_EQ(b.rooms[0].planes, a.rooms[0].planes);
+  EXPECT_EQ(b.rooms[0].keyframes, a.rooms[0].keyframes);
+  EXPECT_TRUE(b.rooms[0].center.isApprox(a.rooms[0].center));
+  ASSERT_EQ(b.floors.size(), 1u);
+  EXPECT_EQ(b.floors[0].rooms, std::vector<int>{2});
+}
+
+TEST(CloudConversions, RoundTripDropsNothingFinite) {
+  const std::vector<Eigen::Vector3d> points = {{1, 2, 3}, {-4.5, 0.25, 1e3}, {0, 0, 0}};
+  const auto back = ros_conversions::FromCloudMsg(ros_conversions::ToCloudMsg(points, "bim"));
+  ASSERT_EQ(back.size(), points.size());
+  for (size_t i = 0; i < points.size(); ++i) EXPECT_TRUE(back[i].isApprox(points[i], 1e-6));
+}
+
+}  // namespace
+}  // namespace is_graphs
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
