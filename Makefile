@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo test bench-conversion buildings clean format
+.PHONY: all setup build demo test bench-conversion buildings bags bags-short bench-bags clean format
 
 all: build
 
@@ -28,6 +28,17 @@ buildings: setup
 # Conversion time and peak memory for the real IFC files and the project's buildings.
 bench-conversion: setup
 	@bash scripts/bench_conversion.sh
+
+# Scenario bags from bags/*.yaml (up-to-date bags are kept; D1/D2 need ../shared/bim).
+bags: build
+	@bash scripts/make_bags.sh
+
+bags-short: build
+	@bash scripts/make_bags.sh '*_short'
+
+# Bag generation time, real-time factor, size and peak memory: SCENARIO=bags/X.yaml
+bench-bags: build
+	@bash scripts/bench_bags.sh $(SCENARIO)
 
 format:
 	@clang-format -i $$(git ls-files '*.h' '*.cpp')

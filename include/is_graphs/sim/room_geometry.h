@@ -1,0 +1,28 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/common/result.h"
+
+namespace is_graphs {
+namespace sim {
+
+/// Index of the room of `storey` whose `name` or `long_name` is `name`; the error lists the
+/// rooms there are.
+Result<int> FindRoom(const agraph::AGraph& graph, int storey, const std::string& name);
+
+/// A point well inside the room's polygon: its centroid when that is inside and at least
+/// `margin` from the edges, else the interior grid point farthest from the edges.
+Eigen::Vector2d RoomInteriorPoint(const agraph::Room& room, double margin = 0.6);
+
+/// True when p is inside the (simple) polygon.
+bool PointInPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
+/// Distance from p to the polygon's boundary.
+double DistanceToPolygonEdges(const std::vector<Eigen::Vector2d>& polygon,
+                              const Eigen::Vector2d& p);
+
+}  // namespace sim
+}  // namespace is_graphs

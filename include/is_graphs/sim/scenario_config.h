@@ -1,0 +1,154 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+// The configuration of one simulated scenario (a bags/*.yaml file): building, trajectory,
+// sensor, gait, odometry drift, scene changes, seed. Plain structs with defaults; each has a
+// Validate() returning "" when valid, else an error naming the offending field by its YAML path
+// (e.g. "trajectory.speed: must be in (0, 2] m/s, got -0.5").
+
+namespace is_graphs {
+namespace sim {
+
+/// Velodyne VLP-16 as the velodyne_pointcloud driver publishes it.
+struct Vlp16Config {
+  double rotation_rate_hz{10.0};       // scans per second
+  double azimuth_resolution_deg{0.2};  // firing sequences per scan = 360 / this
+  double min_range{0.4};               // m; closer returns are dropped (as the driver does)
+  double max_range{100.0};             // m
+  double range_noise_stddev{0.015};    // m, Gaussian (±3 cm at 2σ, the data sheet's accuracy)
+  double range_resolution{0.002};      // m, the packet's distance unit; 0 disables quantization
+  double max_incidence_deg{85.0};      // no return beyond this angle from the surface normal
+  double dropout_probability{0.0};     // random missing returns
+  double intensity_noise_stddev{2.0};  // on the 0..100 diffuse reflectivity scale
+  double azimuth_offset_deg{0.0};      // azimuth (clockwise, from +x) of each scan's first firing
+  std::string Validate() const;
+};
+
+/// Walking gait superposed on the planned planar motion. Amplitudes apply at full activity
+/// (walking at `full_activity_speed` or turning), scaled linearly below it; zero at rest.
+struct GaitConfig {
+  double step_frequency_hz{2.0};  // vertical bob and pitch frequency; roll at half of it
+  double bob_amplitude{0.015};    // m
+  double roll_amplitude_deg{2.0};
+  double pitch_amplitude_deg{1.5};
+  double full_activity_speed{0.3};  // m/s
+  double standing_height{0.525};    // base_link above the floor
+  std::string Validate() const;
+};
+
+/// One waypoint in bim: position, and optionally the heading to turn to on arrival.
+struct WaypointConfig {
+  Eigen::Vector2d position{Eigen::Vector2d::Zero()};
+  std::optional<double> yaw;
+};
+
+struct StartConfig {
+  std::string room;                     // start at this room's centre, or
+  std::optional<Eigen::Vector3d> pose;  // (x, y, yaw) in bim
+};
+
+struct TrajectoryConfig {
+  std::vector<std::string> rooms;         // visit in order (A-Graph room `name` or `long_name`)
+  std::vector<WaypointConfig> waypoints;  // or explicit waypoints (exactly one of the two)
+  StartConfig start;                      // default: the first room / the first waypoint
+  double speed{0.8};                      // m/s cruise
+  double acceleration{0.5};               // m/s²
+  double turn_rate_deg{45.0};             // deg/s, turning in place
+  double turn_acceleration_deg{90.0};     // deg/s²
+  double pause{1.0};                      // s standing still at the start and at each waypoint
+  double doorway_clearance{0.8};          // m: the approach points are this far from the wall face
+  bool loop{false};                       // repeat the route back and forth until `duration`
+  std::string Validate() const;
+};
+
+struct OdometryConfig {
+  double rate_hz{50.0};
+  double scale_error{0.0};              // travelled distance × (1 + scale_error)
+  double yaw_bias_per_m{0.0};           // rad per metre walked
+  double yaw_bias_per_s{0.0};           // rad per second
+  double translation_random_walk{0.0};  // m / √m walked (per axis)
+  double yaw_random_walk{0.0};          // rad / √m walked
+  std::string Validate() const;
+};
+
+/// A reference to an A-Graph wall: by `name` (must be unique on the storey) or by A-Graph `id`.
+struct WallRef {
+  std::string name;
+  int id{-1};
+};
+
+/// BIM deviation: the scene differs from the planned BIM (the A-Graph stays the planned one).
+struct DeviationConfig {
+  enum class Type { kMoveWall, kRemoveWall, kAddWall };
+  Type type{Type::kMoveWall};
+  WallRef wall;        // move_wall, remove_wall
+  double offset{0.0};  // move_wall: m along the wall's first surface normal
+  Eigen::Vector2d start{Eigen::Vector2d::Zero()}, end{Eigen::Vector2d::Zero()};  // add_wall
+  double thickness{0.1};                                                         // add_wall
+  double height{0.0};  // add_wall: 0 = the storey height
+};
+
+/// A clutter object standing on the floor. Shapes: box, cylinder; the named kinds (pallet,
+/// person, column, scaffolding) fill in default sizes.
+struct ClutterConfig {
+  std::string type{"box"};  // box | cylinder | pallet | person | column | scaffolding
+  std::optional<Eigen::Vector2d> position;  // in bim, or
+  std::string room;                         // relative to this room's centre by `offset`
+  Eigen::Vector2d offset{Eigen::Vector2d::Zero()};
+  Eigen::Vector3d size{
+      Eigen::Vector3d::Zero()};  // box/scaffolding (x, y, z); 0 = the kind's default
+  double radius{0.0};            // cylinder; 0 = default
+  double height{0.0};            // cylinder; 0 = default
+  double yaw_deg{0.0};
+  double reflectivity{0.0};  // 0 = the kind's default
+};
+
+/// Random clutter: `count` objects of `types` in `rooms` (all rooms of the storey when empty).
+struct RandomClutterConfig {
+  int count{0};
+  std::vector<std::string> types{"box", "pallet", "person"};
+  std::vector<std::string> rooms;
+  double wall_margin{0.5};  // m kept free along the room's walls
+};
+
+struct SceneConfig {
+  std::vector<std::string> drop_classes{"IfcDoor"};  // mesh objects left out (open doorways)
+  std::vector<DeviationConfig> deviations;
+  std::vector<ClutterConfig> clutter;
+  RandomClutterConfig random_clutter;
+  double wall_reflectivity{0.45};
+  double floor_reflectivity{0.25};
+};
+
+struct ScenarioConfig {
+  std::string name;
+  std::string building;     // IFC or .agraph.json, resolved against base_dir
+  std::string base_dir;     // the repository root (relative `building` paths start here)
+  std::string storey{"0"};  // storey name or index
+  std::uint64_t seed{1};
+  double duration{0.0};       // s; 0 = until the route ends (+ the final pause)
+  double start_time{1000.0};  // s, ROS time of the first message
+  TrajectoryConfig trajectory;
+  Vlp16Config sensor;
+  GaitConfig gait;
+  OdometryConfig odometry;
+  SceneConfig scene;
+  // Sensor mount (base_link -> velodyne), from urdf/spot_like.urdf.
+  Eigen::Vector3d velodyne_offset{0.1, 0.0, 0.1877};
+  // Self-filter: the robot body box in base_link (centre, full size); returns inside are dropped.
+  // Body 1.1 x 0.5 x 0.2 m plus the legs down to the floor, with 1-2 cm margin (more would hide
+  // the lowest beams, which pass just over the body's sides).
+  Eigen::Vector3d body_center{0.0, 0.0, -0.22};
+  Eigen::Vector3d body_size{1.14, 0.54, 0.66};
+
+  /// Validates all sections; the first error, naming the field.
+  std::string Validate() const;
+};
+
+}  // namespace sim
+}  // namespace is_graphs

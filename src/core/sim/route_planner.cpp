@@ -1,0 +1,247 @@
+#include "is_graphs/sim/route_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+
+#include "is_graphs/sim/room_geometry.h"
+
+namespace is_graphs {
+namespace sim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// True when the segment's samples (away from its ends) lie inside the polygon with clearance.
+bool Visible(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& a,
+             const Eigen::Vector2d& b, double clearance) {
+  const double length = (b - a).norm();
+  const int n = std::max(2, static_cast<int>(std::ceil(length / 0.05)));
+  for (int i = 1; i < n; ++i) {
+    const double s = length * i / n;
+    if (s < clearance || length - s < clearance) continue;  // the ends may be near a doorway
+    const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(i) / n);
+    if (!PointInPolygon(poly, p) || DistanceToPolygonEdges(poly, p) < clearance) return false;
+  }
+  return true;
+}
+
+// Shortest path on a node set with visibility edges; returns node indices after `from`.
+std::vector<int> Dijkstra(int n, int from, int to, const std::function<double(int, int)>& cost) {
+  std::vector<double> dist(n, kInf);
+  std::vector<int> prev(n, -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  dist[from] = 0.0;
+  queue.push({0.0, from});
+  while (!queue.empty()) {
+    const auto [d, u] = queue.top();
+    queue.pop();
+    if (d > dist[u]) continue;
+    for (int v = 0; v < n; ++v) {
+      if (v == u) continue;
+      const double c = cost(u, v);
+      if (c < kInf && d + c < dist[v]) {
+        dist[v] = d + c;
+        prev[v] = u;
+        queue.push({dist[v], v});
+      }
+    }
+  }
+  std::vector<int> path;
+  if (dist[to] == kInf) return path;
+  for (int v = to; v != from; v = prev[v]) path.push_back(v);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+// A doorway's crossing: the point in front of it on each side of its wall.
+struct Crossing {
+  int doorway;
+  int room_a, room_b;
+  Eigen::Vector2d side_a, side_b;  // approach points in room_a / room_b
+};
+
+Crossing MakeCrossing(const agraph::AGraph& g, const agraph::Doorway& d, double clearance) {
+  Crossing c{d.id, d.rooms[0], d.rooms[1], {}, {}};
+  const Eigen::Vector2d door = d.position.head<2>();
+  const Eigen::Vector2d inner_a = RoomInteriorPoint(g.rooms[c.room_a]);
+  const Eigen::Vector2d inner_b = RoomInteriorPoint(g.rooms[c.room_b]);
+  Eigen::Vector2d n = (inner_b - inner_a).normalized();
+  double half_thickness = 0.1;
+  if (d.wall >= 0 && d.wall < static_cast<int>(g.walls.size())) {
+    const agraph::Wall& w = g.walls[d.wall];
+    half_thickness = 0.5 * w.thickness;
+    if (w.surface_a >= 0) n = g.surfaces[w.surface_a].plane.normal.head<2>().normalized();
+  }
+  // Orient n from room a to room b: a's side is the one its interior point is on.
+  if ((inner_a - door).dot(n) > 0.0) n = -n;
+  const double offset = half_thickness + clearance;
+  c.side_a = door - offset * n;
+  c.side_b = door + offset * n;
+  return c;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> PathInsideRoom(const std::vector<Eigen::Vector2d>& polygon,
+                                            const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                            double clearance) {
+  if (polygon.size() < 3 || Visible(polygon, a, b, clearance)) return {b};
+  // Nodes: a, b, and each polygon corner moved inward along its bisector.
+  std::vector<Eigen::Vector2d> nodes{a, b};
+  const std::size_t m = polygon.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    const Eigen::Vector2d prev = (polygon[i] - polygon[(i + m - 1) % m]).normalized();
+    const Eigen::Vector2d next = (polygon[(i + 1) % m] - polygon[i]).normalized();
+    // Counter-clockwise polygon: the inward normal of an edge direction e is (-e.y, e.x).
+    Eigen::Vector2d bisector =
+        Eigen::Vector2d(-prev.y(), prev.x()) + Eigen::Vector2d(-next.y(), next.x());
+    if (bisector.norm() < 1e-6) continue;
+    bisector.normalize();
+    for (double inset : {2.0 * clearance + 0.3, 4.0 * clearance + 0.3}) {
+      const Eigen::Vector2d p = polygon[i] + inset * bisector;
+      if (PointInPolygon(polygon, p)) nodes.push_back(p);
+    }
+  }
+  const std::vector<int> path = Dijkstra(static_cast<int>(nodes.size()), 0, 1, [&](int u, int v) {
+    return Visible(polygon, nodes[u], nodes[v], clearance) ? (nodes[u] - nodes[v]).norm() : kInf;
+  });
+  if (path.empty()) return {b};  // no better idea: walk straight (the caller's scene decides)
+  std::vector<Eigen::Vector2d> out;
+  for (int v : path) out.push_back(nodes[v]);
+  return out;
+}
+
+Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryConfig& config) {
+  using R = Result<Route>;
+  Route route;
+  const TrajectoryConfig& c = config;
+
+  if (!c.waypoints.empty()) {
+    for (const WaypointConfig& w : c.waypoints)
+      route.waypoints.push_back({w.position, w.yaw, true});
+    if (c.start.pose) {
+      route.start = *c.start.pose;
+    } else if (!c.start.room.empty()) {
+      const Result<int> room = FindRoom(g, storey, c.start.room);
+      if (!room.ok()) return R::Error("trajectory.start.room: " + room.error());
+      route.start.head<2>() = RoomInteriorPoint(g.rooms[room.value()]);
+    } else {
+      route.start.head<2>() = route.waypoints.front().position;
+      route.start.z() = route.waypoints.front().yaw.value_or(0.0);
+      route.waypoints.erase(route.waypoints.begin());
+    }
+    if (!c.start.pose && !route.waypoints.empty()) {
+      const Eigen::Vector2d d = route.waypoints.front().position - route.start.head<2>();
+      if (d.norm() > 1e-3) route.start.z() = std::atan2(d.y(), d.x());
+    }
+    route.description.push_back("explicit waypoints: " + std::to_string(c.waypoints.size()));
+    return R::Ok(route);
+  }
+
+  // Rooms to visit, as ids; the start room first.
+  std::vector<int> targets;
+  std::vector<std::string> fields;
+  for (std::size_t i = 0; i < c.rooms.size(); ++i) {
+    const std::string field = "trajectory.rooms[" + std::to_string(i) + "]";
+    const Result<int> room = FindRoom(g, storey, c.rooms[i]);
+    if (!room.ok()) return R::Error(field + ": " + room.error());
+    targets.push_back(room.value());
+    fields.push_back(field + " ('" + c.rooms[i] + "')");
+  }
+  if (!c.start.room.empty()) {
+    const Result<int> room = FindRoom(g, storey, c.start.room);
+    if (!room.ok()) return R::Error("trajectory.start.room: " + room.error());
+    if (room.value() != targets.front()) {
+      targets.insert(targets.begin(), room.value());
+      fields.insert(fields.begin(), "trajectory.start.room ('" + c.start.room + "')");
+    }
+  }
+  Eigen::Vector2d position = RoomInteriorPoint(g.rooms[targets.front()]);
+  if (c.start.pose) {
+    position = c.start.pose->head<2>();
+    if (!PointInPolygon(g.rooms[targets.front()].polygon, position)) {
+      return R::Error("trajectory.start.pose: not inside the first room '" +
+                      g.rooms[targets.front()].name + "'");
+    }
+  }
+
+  // Doorway graph of the storey.
+  std::vector<Crossing> crossings;
+  for (const agraph::Doorway& d : g.doorways) {
+    if (d.rooms.size() != 2 || d.rooms[0] == d.rooms[1]) continue;
+    if (g.rooms[d.rooms[0]].storey != storey || g.rooms[d.rooms[1]].storey != storey) continue;
+    crossings.push_back(MakeCrossing(g, d, c.doorway_clearance));
+  }
+  const int n_rooms = static_cast<int>(g.rooms.size());
+  auto edge = [&](int u, int v) {  // cheapest crossing between rooms u and v
+    double best = kInf;
+    for (const Crossing& x : crossings) {
+      if ((x.room_a == u && x.room_b == v) || (x.room_a == v && x.room_b == u)) {
+        const Eigen::Vector2d pu = x.room_a == u ? x.side_a : x.side_b;
+        const Eigen::Vector2d pv = x.room_a == u ? x.side_b : x.side_a;
+        best = std::min(best, (RoomInteriorPoint(g.rooms[u]) - pu).norm() + (pu - pv).norm() +
+                                  (pv - RoomInteriorPoint(g.rooms[v])).norm());
+      }
+    }
+    return best;
+  };
+  std::vector<std::vector<double>> cost(n_rooms, std::vector<double>(n_rooms, kInf));
+  for (const Crossing& x : crossings) {
+    cost[x.room_a][x.room_b] = cost[x.room_b][x.room_a] = edge(x.room_a, x.room_b);
+  }
+
+  route.start = Eigen::Vector3d(position.x(), position.y(), c.start.pose ? c.start.pose->z() : 0.0);
+  auto walk_to = [&](const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& goal,
+                     bool pause) {
+    const std::vector<Eigen::Vector2d> path = PathInsideRoom(polygon, position, goal);
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      route.waypoints.push_back({path[i], std::nullopt, pause && i + 1 == path.size()});
+    }
+    position = goal;
+  };
+  for (std::size_t i = 1; i < targets.size(); ++i) {
+    if (targets[i] == targets[i - 1]) continue;
+    const std::vector<int> rooms =
+        Dijkstra(n_rooms, targets[i - 1], targets[i], [&](int u, int v) { return cost[u][v]; });
+    if (rooms.empty()) {
+      return R::Error(fields[i] + ": not reachable from '" + g.rooms[targets[i - 1]].name +
+                      "' through the doorways of storey " + std::to_string(storey));
+    }
+    int current = targets[i - 1];
+    std::string leg = g.rooms[current].name;
+    for (int next : rooms) {
+      const Crossing* best = nullptr;
+      double best_cost = kInf;
+      for (const Crossing& x : crossings) {
+        if (!((x.room_a == current && x.room_b == next) ||
+              (x.room_a == next && x.room_b == current))) {
+          continue;
+        }
+        const Eigen::Vector2d near = x.room_a == current ? x.side_a : x.side_b;
+        const double cst = (near - position).norm();
+        if (cst < best_cost) best_cost = cst, best = &x;
+      }
+      const Eigen::Vector2d near = best->room_a == current ? best->side_a : best->side_b;
+      const Eigen::Vector2d far = best->room_a == current ? best->side_b : best->side_a;
+      walk_to(g.rooms[current].polygon, near, false);
+      route.waypoints.push_back({far, std::nullopt, false});  // straight through the doorway
+      position = far;
+      walk_to(g.rooms[next].polygon, RoomInteriorPoint(g.rooms[next]), next == targets[i]);
+      leg += " -> [" + g.doorways[best->doorway].name + "] -> " + g.rooms[next].name;
+      current = next;
+    }
+    route.description.push_back(leg);
+  }
+  if (!route.waypoints.empty() && !c.start.pose) {
+    const Eigen::Vector2d d = route.waypoints.front().position - route.start.head<2>();
+    if (d.norm() > 1e-3) route.start.z() = std::atan2(d.y(), d.x());
+  }
+  return R::Ok(route);
+}
+
+}  // namespace sim
+}  // namespace is_graphs

@@ -1,0 +1,137 @@
+#include "is_graphs/sim/scenario_config.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace is_graphs {
+namespace sim {
+namespace {
+
+// "field: must be <what>, got <value>" when !(lo <= value <= hi) (NaN fails).
+std::string Range(const std::string& field, double value, double lo, double hi,
+                  const std::string& unit = "") {
+  if (value >= lo && value <= hi) return "";
+  std::ostringstream out;
+  out << field << ": must be in [" << lo << ", " << hi << "]" << (unit.empty() ? "" : " ") << unit
+      << ", got " << value;
+  return out.str();
+}
+
+// As Range with an open lower bound: lo < value <= hi.
+std::string Positive(const std::string& field, double value, double hi,
+                     const std::string& unit = "") {
+  if (value > 0.0 && value <= hi) return "";
+  std::ostringstream out;
+  out << field << ": must be > 0 and <= " << hi << (unit.empty() ? "" : " ") << unit << ", got "
+      << value;
+  return out.str();
+}
+
+std::string First(std::initializer_list<std::string> errors) {
+  for (const std::string& e : errors) {
+    if (!e.empty()) return e;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string Vlp16Config::Validate() const {
+  return First({Positive("sensor.rotation_rate_hz", rotation_rate_hz, 20.0, "Hz"),
+                Positive("sensor.azimuth_resolution_deg", azimuth_resolution_deg, 10.0, "deg"),
+                Range("sensor.min_range", min_range, 0.0, 10.0, "m"),
+                Positive("sensor.max_range", max_range, 1000.0, "m"),
+                max_range > min_range ? "" : "sensor.max_range: must exceed sensor.min_range",
+                Range("sensor.range_noise_stddev", range_noise_stddev, 0.0, 1.0, "m"),
+                Range("sensor.range_resolution", range_resolution, 0.0, 0.1, "m"),
+                Range("sensor.max_incidence_deg", max_incidence_deg, 0.0, 90.0, "deg"),
+                Range("sensor.dropout_probability", dropout_probability, 0.0, 1.0),
+                Range("sensor.intensity_noise_stddev", intensity_noise_stddev, 0.0, 100.0),
+                Range("sensor.azimuth_offset_deg", azimuth_offset_deg, -360.0, 360.0, "deg")});
+}
+
+std::string GaitConfig::Validate() const {
+  return First({Positive("gait.step_frequency_hz", step_frequency_hz, 10.0, "Hz"),
+                Range("gait.bob_amplitude", bob_amplitude, 0.0, 0.2, "m"),
+                Range("gait.roll_amplitude_deg", roll_amplitude_deg, 0.0, 20.0, "deg"),
+                Range("gait.pitch_amplitude_deg", pitch_amplitude_deg, 0.0, 20.0, "deg"),
+                Positive("gait.full_activity_speed", full_activity_speed, 5.0, "m/s"),
+                Positive("gait.standing_height", standing_height, 2.0, "m")});
+}
+
+std::string TrajectoryConfig::Validate() const {
+  if (rooms.empty() && waypoints.empty()) {
+    return "trajectory: needs `rooms` (room names to visit) or `waypoints`";
+  }
+  if (!rooms.empty() && !waypoints.empty()) {
+    return "trajectory: give either `rooms` or `waypoints`, not both";
+  }
+  if (!start.room.empty() && start.pose) {
+    return "trajectory.start: give either `room` or `pose`, not both";
+  }
+  return First(
+      {Range("trajectory.speed", speed, 0.3, 1.2, "m/s"),
+       Positive("trajectory.acceleration", acceleration, 10.0, "m/s^2"),
+       Positive("trajectory.turn_rate_deg", turn_rate_deg, 360.0, "deg/s"),
+       Positive("trajectory.turn_acceleration_deg", turn_acceleration_deg, 3600.0, "deg/s^2"),
+       Range("trajectory.pause", pause, 0.0, 600.0, "s"),
+       Range("trajectory.doorway_clearance", doorway_clearance, 0.3, 5.0, "m")});
+}
+
+std::string OdometryConfig::Validate() const {
+  return First(
+      {Positive("odometry.rate_hz", rate_hz, 1000.0, "Hz"),
+       Range("odometry.scale_error", scale_error, -0.5, 0.5),
+       Range("odometry.yaw_bias_per_m", yaw_bias_per_m, -1.0, 1.0, "rad/m"),
+       Range("odometry.yaw_bias_per_s", yaw_bias_per_s, -1.0, 1.0, "rad/s"),
+       Range("odometry.translation_random_walk", translation_random_walk, 0.0, 1.0, "m/sqrt(m)"),
+       Range("odometry.yaw_random_walk", yaw_random_walk, 0.0, 1.0, "rad/sqrt(m)")});
+}
+
+std::string ScenarioConfig::Validate() const {
+  if (building.empty()) return "building: missing (path of an .ifc or .agraph.json file)";
+  if (!(duration >= 0.0 && duration <= 3600.0)) {
+    return "duration: must be in [0, 3600] s, got " + std::to_string(duration);
+  }
+  if (!(start_time > 0.0 && start_time < 4.0e9)) {
+    return "start_time: must be a positive ROS time in seconds, got " + std::to_string(start_time);
+  }
+  std::string e =
+      First({trajectory.Validate(), sensor.Validate(), gait.Validate(), odometry.Validate()});
+  if (!e.empty()) return e;
+  for (std::size_t i = 0; i < scene.deviations.size(); ++i) {
+    const DeviationConfig& d = scene.deviations[i];
+    const std::string f = "scene.deviations[" + std::to_string(i) + "]";
+    if (d.type != DeviationConfig::Type::kAddWall && d.wall.name.empty() && d.wall.id < 0) {
+      return f + ".wall: missing (a wall name or A-Graph wall id)";
+    }
+    if (d.type == DeviationConfig::Type::kAddWall) {
+      if ((d.end - d.start).norm() < 0.05) return f + ".end: the wall is shorter than 5 cm";
+      e = First({Positive(f + ".thickness", d.thickness, 2.0, "m"),
+                 Range(f + ".height", d.height, 0.0, 20.0, "m")});
+      if (!e.empty()) return e;
+    }
+    if (d.type == DeviationConfig::Type::kMoveWall) {
+      e = Range(f + ".offset", d.offset, -5.0, 5.0, "m");
+      if (!e.empty()) return e;
+    }
+  }
+  for (std::size_t i = 0; i < scene.clutter.size(); ++i) {
+    const ClutterConfig& c = scene.clutter[i];
+    const std::string f = "scene.clutter[" + std::to_string(i) + "]";
+    if (!c.position && c.room.empty()) return f + ": needs `position` or `room`";
+    if (c.size.minCoeff() < 0.0) return f + ".size: must not be negative";
+    e = First({Range(f + ".radius", c.radius, 0.0, 10.0, "m"),
+               Range(f + ".height", c.height, 0.0, 20.0, "m"),
+               Range(f + ".reflectivity", c.reflectivity, 0.0, 1.0)});
+    if (!e.empty()) return e;
+  }
+  if (scene.random_clutter.count < 0 || scene.random_clutter.count > 10000) {
+    return "scene.random_clutter.count: must be in [0, 10000]";
+  }
+  return First({Range("scene.wall_reflectivity", scene.wall_reflectivity, 0.0, 1.0),
+                Range("scene.floor_reflectivity", scene.floor_reflectivity, 0.0, 1.0)});
+}
+
+}  // namespace sim
+}  // namespace is_graphs

@@ -1,0 +1,114 @@
+// The `scene` section of a scenario YAML: mesh classes to drop, BIM deviations, clutter.
+#include "yaml_fields.h"
+
+namespace is_graphs {
+namespace sim {
+namespace yaml_fields {
+namespace {
+
+const std::set<std::string> kClutterTypes{"box",    "cylinder", "pallet",
+                                          "person", "column",   "scaffolding"};
+
+WallRef ParseWallRef(const YAML::Node& n, const std::string& f) {
+  WallRef ref;
+  if (!n) Fail(f, "missing (a wall name or A-Graph wall id)");
+  int id = -1;
+  if (YAML::convert<int>::decode(n, id)) {
+    ref.id = id;
+  } else {
+    ref.name = As<std::string>(n, f, "a wall name or an A-Graph wall id");
+  }
+  return ref;
+}
+
+DeviationConfig ParseDeviation(const YAML::Node& n, const std::string& f) {
+  CheckMap(n, f, {"type", "wall", "offset", "start", "end", "thickness", "height"});
+  DeviationConfig d;
+  std::string type;
+  Get(n, f, "type", &type);
+  if (type == "move_wall") {
+    d.type = DeviationConfig::Type::kMoveWall;
+    d.wall = ParseWallRef(n["wall"], f + ".wall");
+    if (!n["offset"]) Fail(f + ".offset", "missing (metres along the wall normal)");
+    Get(n, f, "offset", &d.offset);
+  } else if (type == "remove_wall") {
+    d.type = DeviationConfig::Type::kRemoveWall;
+    d.wall = ParseWallRef(n["wall"], f + ".wall");
+  } else if (type == "add_wall") {
+    d.type = DeviationConfig::Type::kAddWall;
+    if (!n["start"] || !n["end"]) Fail(f, "add_wall needs `start` and `end` ([x, y])");
+    d.start = Vec2(n["start"], f + ".start");
+    d.end = Vec2(n["end"], f + ".end");
+    Get(n, f, "thickness", &d.thickness);
+    Get(n, f, "height", &d.height);
+  } else {
+    Fail(f + ".type", "must be move_wall, remove_wall or add_wall, got '" + type + "'");
+  }
+  return d;
+}
+
+ClutterConfig ParseClutter(const YAML::Node& n, const std::string& f) {
+  CheckMap(n, f,
+           {"type", "position", "room", "offset", "size", "radius", "height", "yaw_deg",
+            "reflectivity"});
+  ClutterConfig c;
+  Get(n, f, "type", &c.type);
+  if (!kClutterTypes.count(c.type)) {
+    Fail(f + ".type",
+         "must be box, cylinder, pallet, person, column or scaffolding, got '" + c.type + "'");
+  }
+  if (n["position"]) c.position = Vec2(n["position"], f + ".position");
+  Get(n, f, "room", &c.room);
+  if (n["offset"]) c.offset = Vec2(n["offset"], f + ".offset");
+  if (n["size"]) {
+    const std::vector<double> v = Numbers(n["size"], f + ".size", 3, 3);
+    c.size = {v[0], v[1], v[2]};
+  }
+  Get(n, f, "radius", &c.radius);
+  Get(n, f, "height", &c.height);
+  Get(n, f, "yaw_deg", &c.yaw_deg);
+  Get(n, f, "reflectivity", &c.reflectivity);
+  return c;
+}
+
+}  // namespace
+
+void ParseScene(const YAML::Node& n, SceneConfig* s) {
+  const std::string f = "scene";
+  CheckMap(n, f,
+           {"drop_classes", "deviations", "clutter", "random_clutter", "wall_reflectivity",
+            "floor_reflectivity"});
+  if (n["drop_classes"]) s->drop_classes = Strings(n["drop_classes"], f + ".drop_classes");
+  for (const char* list : {"deviations", "clutter"}) {
+    if (n[list] && !n[list].IsSequence()) Fail(Join(f, list), "must be a list");
+  }
+  for (std::size_t i = 0; n["deviations"] && i < n["deviations"].size(); ++i) {
+    s->deviations.push_back(
+        ParseDeviation(n["deviations"][i], f + ".deviations[" + std::to_string(i) + "]"));
+  }
+  for (std::size_t i = 0; n["clutter"] && i < n["clutter"].size(); ++i) {
+    s->clutter.push_back(ParseClutter(n["clutter"][i], f + ".clutter[" + std::to_string(i) + "]"));
+  }
+  if (n["random_clutter"]) {
+    const YAML::Node r = n["random_clutter"];
+    const std::string rf = f + ".random_clutter";
+    CheckMap(r, rf, {"count", "types", "rooms", "wall_margin"});
+    Get(r, rf, "count", &s->random_clutter.count);
+    if (r["types"]) s->random_clutter.types = Strings(r["types"], rf + ".types");
+    if (s->random_clutter.types.empty()) Fail(rf + ".types", "must not be empty");
+    for (std::size_t i = 0; i < s->random_clutter.types.size(); ++i) {
+      if (!kClutterTypes.count(s->random_clutter.types[i])) {
+        Fail(rf + ".types[" + std::to_string(i) + "]",
+             "must be box, cylinder, pallet, person, column or scaffolding");
+      }
+    }
+    if (r["rooms"]) s->random_clutter.rooms = Strings(r["rooms"], rf + ".rooms");
+    Get(r, rf, "wall_margin", &s->random_clutter.wall_margin);
+  }
+  Get(n, f, "wall_reflectivity", &s->wall_reflectivity);
+  Get(n, f, "floor_reflectivity", &s->floor_reflectivity);
+}
+
+}  // namespace yaml_fields
+}  // namespace sim
+}  // namespace is_graphs

@@ -1,0 +1,114 @@
+// Scenario YAML parsing and validation: defaults, every error names its field.
+#include <gtest/gtest.h>
+
+#include "is_graphs/sim/scenario_yaml.h"
+
+namespace is_graphs {
+namespace sim {
+namespace {
+
+Result<ScenarioConfig> Parse(const std::string& text) {
+  return ParseScenarioYaml(text, "s.yaml", "/repo");
+}
+
+void ExpectError(const std::string& text, const std::string& expected) {
+  const Result<ScenarioConfig> r = Parse(text);
+  ASSERT_FALSE(r.ok()) << text;
+  EXPECT_NE(r.error().find(expected), std::string::npos) << r.error();
+  EXPECT_EQ(r.error().rfind("s.yaml", 0), 0u) << r.error();
+}
+
+TEST(SimScenarioYaml, ReadsAFullScenario) {
+  const Result<ScenarioConfig> r = Parse(R"(
+name: demo
+building: bim/office.ifc
+storey: Ground floor
+seed: 7
+duration: 120
+trajectory:
+  rooms: [Corridor, "101"]
+  start: {room: Corridor}
+  speed: 1.0
+  loop: true
+sensor: {range_noise_stddev: 0.02, max_range: 80}
+gait: {bob_amplitude: 0.02}
+odometry: {scale_error: 0.01, yaw_bias_per_m: 0.001, translation_random_walk: 0.01}
+scene:
+  drop_classes: [IfcDoor, IfcWindow]
+  deviations:
+    - {type: move_wall, wall: p_n1, offset: 0.1}
+    - {type: remove_wall, wall: 3}
+    - {type: add_wall, start: [1, 1], end: [3, 1], thickness: 0.12}
+  clutter:
+    - {type: pallet, room: "101", offset: [0.5, 0]}
+    - {type: person, position: [2, 6]}
+  random_clutter: {count: 5, types: [box]}
+)");
+  ASSERT_TRUE(r.ok()) << r.error();
+  const ScenarioConfig& c = r.value();
+  EXPECT_EQ(c.name, "demo");
+  EXPECT_EQ(c.base_dir, "/repo");
+  EXPECT_EQ(c.storey, "Ground floor");
+  EXPECT_EQ(c.seed, 7u);
+  EXPECT_EQ(c.trajectory.rooms.size(), 2u);
+  EXPECT_EQ(c.trajectory.start.room, "Corridor");
+  EXPECT_TRUE(c.trajectory.loop);
+  EXPECT_DOUBLE_EQ(c.sensor.range_noise_stddev, 0.02);
+  EXPECT_DOUBLE_EQ(c.sensor.azimuth_resolution_deg, 0.2);  // default kept
+  EXPECT_DOUBLE_EQ(c.odometry.rate_hz, 50.0);
+  ASSERT_EQ(c.scene.deviations.size(), 3u);
+  EXPECT_EQ(c.scene.deviations[0].wall.name, "p_n1");
+  EXPECT_EQ(c.scene.deviations[1].wall.id, 3);
+  EXPECT_EQ(c.scene.deviations[2].type, DeviationConfig::Type::kAddWall);
+  ASSERT_EQ(c.scene.clutter.size(), 2u);
+  EXPECT_TRUE(c.scene.clutter[1].position.has_value());
+  EXPECT_EQ(c.scene.random_clutter.count, 5);
+}
+
+TEST(SimScenarioYaml, WaypointsWithAndWithoutYaw) {
+  const Result<ScenarioConfig> r =
+      Parse("building: b.ifc\ntrajectory: {waypoints: [[0, 0], [1, 2, 1.57]]}\n");
+  ASSERT_TRUE(r.ok()) << r.error();
+  ASSERT_EQ(r.value().trajectory.waypoints.size(), 2u);
+  EXPECT_FALSE(r.value().trajectory.waypoints[0].yaw);
+  EXPECT_DOUBLE_EQ(*r.value().trajectory.waypoints[1].yaw, 1.57);
+}
+
+TEST(SimScenarioYaml, ErrorsNameTheField) {
+  const std::string rooms = "trajectory: {rooms: [A, B]";
+  ExpectError("building: b.ifc\ntrajectory: {rooms: [A, B], speed: -0.5}\n",
+              "trajectory.speed: must be in [0.3, 1.2]");
+  ExpectError("trajectory: {rooms: [A]}\n", "building: missing");
+  ExpectError("building: b.ifc\n", "trajectory: missing");
+  ExpectError("building: b.ifc\ntrajectory: {}\n", "trajectory: needs `rooms`");
+  ExpectError("building: b.ifc\n" + rooms + ", sped: 1}\n", "trajectory.sped: unknown key");
+  ExpectError("building: b.ifc\n" + rooms + "}\nsensor: {max_range: x}\n",
+              "sensor.max_range: must be a number");
+  ExpectError("building: b.ifc\n" + rooms + "}\nodometry: {scale_error: 0.9}\n",
+              "odometry.scale_error");
+  ExpectError("building: b.ifc\n" + rooms + ", waypoints: [[1, 2]]}\n", "not both");
+  ExpectError("building: b.ifc\ntrajectory: {waypoints: [[1]]}\n",
+              "trajectory.waypoints[0]: must be a list of 2 to 3 numbers");
+  ExpectError("building: b.ifc\n" + rooms + "}\nscene: {deviations: [{type: shift_wall}]}\n",
+              "scene.deviations[0].type");
+  ExpectError(
+      "building: b.ifc\n" + rooms + "}\nscene: {deviations: [{type: move_wall, wall: w}]}\n",
+      "scene.deviations[0].offset: missing");
+  ExpectError(
+      "building: b.ifc\n" + rooms + "}\nscene: {clutter: [{type: sofa, position: [0, 0]}]}\n",
+      "scene.clutter[0].type");
+  ExpectError("building: b.ifc\n" + rooms + "}\nscene: {clutter: [{type: box}]}\n",
+              "scene.clutter[0]: needs `position` or `room`");
+  ExpectError("building: b.ifc\n" + rooms + "}\nduration: -3\n", "duration");
+}
+
+TEST(SimScenarioYaml, InvalidYamlGivesTheLine) {
+  const Result<ScenarioConfig> r = Parse("building: b.ifc\ntrajectory: {rooms: [A, B]\n");
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().find("invalid YAML"), std::string::npos) << r.error();
+  EXPECT_NE(r.error().find("s.yaml:"), std::string::npos) << r.error();
+}
+
+}  // namespace
+}  // namespace sim
+}  // namespace is_graphs
