@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the whole suite (gtest of the core, pytest of the BIM scripts, rostest of the nodes)
 # through `catkin_make run_tests`, then catkin_test_results' summary and one closing line
-# "test: N passed, N failed, N skipped". Non-zero on any failure, on a build failure of the
+# "test: N passed, N failed, N skipped" (scripts/test_summary.py). Non-zero on any failure, on a build failure of the
 # tests, and when no test ran at all.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -21,23 +21,12 @@ echo "--------------------------------------------------------------------------
 catkin_test_results --all .ws/build/test_results > .ws/test_results.txt 2>&1
 results_rc=$?
 grep -vE "^Skipping" .ws/test_results.txt | tail -n 40
-summary=$(grep -E "^Summary:" .ws/test_results.txt | tail -n 1)
-read -r tests errors failures skipped < <(echo "${summary}" |
-  sed -E 's/Summary: ([0-9]+) tests, ([0-9]+) errors, ([0-9]+) failures, ([0-9]+) skipped/\1 \2 \3 \4/')
-tests=${tests:-0} errors=${errors:-0} failures=${failures:-0} skipped=${skipped:-0}
-failed=$((errors + failures))
-passed=$((tests - failed - skipped))
 rc=0
 if [ "${make_rc}" != 0 ]; then
   echo "test: catkin_make run_tests failed (exit ${make_rc}); see .ws/test.log" >&2
   tail -n 30 .ws/test.log >&2
   rc=1
-  [ "${failed}" = 0 ] && failed=1
 fi
 [ "${results_rc}" != 0 ] && rc=1
-if [ "${tests}" = 0 ]; then
-  echo "test: no test ran" >&2
-  rc=1
-fi
-echo "test: ${passed} passed, ${failed} failed, ${skipped} skipped"
+/usr/bin/python3 scripts/test_summary.py .ws/build/test_results || rc=1
 exit ${rc}
