@@ -23,6 +23,16 @@ if ((${#missing[@]})); then
   $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
+# roslaunch resolves "localhost"; a bare system (a minimal container or chroot) may lack the entry.
+if ! getent hosts localhost >/dev/null 2>&1; then
+  if [ "$(id -u)" = 0 ]; then
+    echo "setup: 'localhost' does not resolve (ROS needs it): adding '127.0.0.1 localhost' to /etc/hosts"
+    echo "127.0.0.1 localhost" >> /etc/hosts
+  else
+    echo "setup: warning: 'localhost' does not resolve; roslaunch and rostest will fail" >&2
+  fi
+fi
+
 stamp=.venv/.requirements.sha256
 want=$(sha256sum scripts/requirements.txt | cut -d' ' -f1)
 if [ ! -x .venv/bin/python3 ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+#include "is_graphs/matching/matcher_config.h"
+#include "is_graphs/matching/pairwise_consistency.h"
+#include "is_graphs/matching/rigid_fit.h"
+#include "is_graphs/matching/room_descriptor.h"
+
+namespace is_graphs {
+namespace matching {
+
+// The match-candidates graph, built top-down: room pairs (an S-room and an A-room that pass the
+// categorical, structural and geometric checks) and, under each, the surface pairs that make it.
+
+struct EvaluationTolerances {
+  double offset{0.3};
+  double centre{0.6};
+  double angle_rad{0.14};
+  double min_plane_fraction{0.5};
+  double quality_sigma{0.12};
+
+  static EvaluationTolerances From(const MatcherConfig& config, double slack = 0.0);
+};
+
+/// A room pair under a given motion: which S-planes found which A-surfaces, how well.
+struct PairEvaluation {
+  bool ok{false};
+  double quality{0.0};  // (matched share of S-planes) (½ + ½ A-coverage) exp(-rms²/2σ²)
+  double rms{0.0};
+  std::vector<std::pair<int, int>> surfaces;  // (S-plane index, A-plane index) in the descriptors
+  std::vector<double> residuals;              // per surface pair [m]
+};
+
+/// Evaluates S-room `s` against A-room `a` under `pose` (bim_T_map). With `full_rank` the moved
+/// S-centre must lie within the centre tolerance of the A-centre, otherwise (a corridor, or a
+/// room whose planes are all parallel) within the tolerance of the A-room's footprint.
+PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, const Pose2& pose,
+                            bool full_rank, const EvaluationTolerances& tolerances);
+
+/// A local candidate: an S-room, an A-room and the motion their surfaces alone imply.
+struct RoomCandidate {
+  int s_room{0};  // indices into the descriptor vectors
+  int a_room{0};
+  Pose2 pose;
+  bool full_rank{false};  // the surfaces fix the motion; else free along `axis` (in B)
+  Eigen::Vector2d axis{Eigen::Vector2d::UnitX()};
+  double quality{0.0};
+};
+
+/// The local candidates of one S-room against every A-room: yaws from pairing an anchor S-plane
+/// with each A-surface at the same distance from the centre (no blind permutations), surfaces
+/// paired under each yaw and pruned by pairwise point-normal consistency, the motion fitted,
+/// the pair evaluated. At most one candidate per A-room and yaw.
+std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s_index,
+                                                  const std::vector<RoomDescriptor>& a_rooms,
+                                                  const MatcherConfig& config);
+
+/// The correspondence of a candidate for RoomPairConsistency.
+RoomCorrespondence ToCorrespondence(const RoomCandidate& c, const RoomDescriptor& s,
+                                    const RoomDescriptor& a);
+
+}  // namespace matching
+}  // namespace is_graphs

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace is_graphs {
+namespace matching {
+
+/// As msg/GraphMatch.msg: NONE (no hypothesis), AMBIGUOUS (competing hypotheses, or too little
+/// evidence), UNIQUE (one hypothesis clearly best).
+enum class MatchStatus { kNone = 0, kAmbiguous = 1, kUnique = 2 };
+
+const char* ToString(MatchStatus status);
+
+/// An A-Graph node (room or wall-surface id) and the S-Graph node (room or plane id) it matches.
+struct MatchPair {
+  int a_id{0};
+  int s_id{0};
+  double score{0.0};  // quality of the pair in [0, 1]
+};
+
+/// A global hypothesis, as reported for the competitors of the best one.
+struct HypothesisSummary {
+  Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};
+  double score{0.0};
+  int rooms{0};  // matched S-rooms
+};
+
+/// The matcher's answer for one S-Graph revision. For AMBIGUOUS the pairs and bim_T_map are
+/// those of the best-scoring hypothesis, for inspection only (not to be acted on).
+struct GraphMatch {
+  MatchStatus status{MatchStatus::kNone};
+  std::string a_graph_sha256;
+  unsigned s_graph_revision{0};
+  std::vector<MatchPair> room_pairs;     // A-room id, S-room id
+  std::vector<MatchPair> surface_pairs;  // A-wall-surface id, S-plane id
+  double score{0.0};                     // global affinity of the best hypothesis
+  unsigned hypotheses{0};                // hypotheses in the best score cluster (1 when UNIQUE)
+  Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // rotation about z + translation
+  std::vector<HypothesisSummary> alternatives;  // the other hypotheses of the best cluster
+  std::vector<std::string> warnings;            // bad input found in either graph
+};
+
+}  // namespace matching
+}  // namespace is_graphs

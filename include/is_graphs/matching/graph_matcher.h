@@ -1,0 +1,76 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/matching/candidate_graph.h"
+#include "is_graphs/matching/graph_match.h"
+#include "is_graphs/matching/hypothesis_scoring.h"
+#include "is_graphs/matching/matcher_config.h"
+#include "is_graphs/matching/room_descriptor.h"
+#include "is_graphs/sgraph/sgraph.h"
+
+namespace is_graphs {
+namespace matching {
+
+/// What the last Match did (for logs and the benchmark).
+struct MatchStats {
+  int s_rooms{0};          // usable S-rooms
+  int candidates{0};       // local room-pair candidates
+  int reused_rooms{0};     // S-rooms whose candidates came from the previous revision
+  int seeds{0};            // global candidates grown
+  int hypotheses{0};       // distinct global candidates scored
+  double milliseconds{0.0};
+};
+
+/// The hierarchical A-Graph <-> S-Graph matcher (iS-Graphs' graph matching, made deterministic):
+///  1. top-down candidates: per S-room, the A-rooms whose surfaces it can be (categorical,
+///     structural and point-normal checks), with the surface pairs and the motion they imply;
+///  2. bottom-up global candidates: from each full-rank room pair as a seed, the other S-rooms
+///     join in order of distance when a room pair of theirs is consistent with the seed pair
+///     (pairwise, CLIPPER-style) and with the motion refitted so far; finally re-checked under
+///     the motion fitted to everything, and scored by global affinity;
+///  3. decision: hypotheses implying the same motion merged, the best score cluster
+///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide).
+/// Incremental: an S-room unchanged since the last call keeps its candidates, and the last best
+/// motion is grown first. Not thread-safe; one matcher per thread.
+class GraphMatcher {
+ public:
+  explicit GraphMatcher(const MatcherConfig& config = {});
+
+  /// Sets or replaces the A-Graph (forgetting the incremental state); returns its warnings.
+  std::vector<std::string> SetAGraph(const agraph::AGraph& graph);
+  bool HasAGraph() const { return has_agraph_; }
+
+  /// Matches one S-Graph revision. Bad input is reported in GraphMatch::warnings and left out;
+  /// nothing usable gives NONE.
+  GraphMatch Match(const sgraph::SGraph& graph);
+
+  const MatchStats& LastStats() const { return stats_; }
+  const MatcherConfig& config() const { return config_; }
+  const std::vector<RoomDescriptor>& ARooms() const { return a_rooms_; }
+
+ private:
+  struct CachedRoom {
+    RoomDescriptor descriptor;
+    std::vector<RoomCandidate> candidates;
+  };
+
+  Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,
+                  const std::vector<RoomDescriptor>& s_rooms,
+                  const std::vector<std::vector<RoomCandidate>>& candidates) const;
+
+  MatcherConfig config_;
+  bool has_agraph_{false};
+  std::string a_sha256_;
+  std::vector<RoomDescriptor> a_rooms_;
+  std::map<int, CachedRoom> cache_;  // by S-room id
+  std::optional<Pose2> last_best_;
+  MatchStats stats_;
+};
+
+}  // namespace matching
+}  // namespace is_graphs

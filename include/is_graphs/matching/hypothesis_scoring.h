@@ -1,0 +1,59 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "is_graphs/matching/candidate_graph.h"
+#include "is_graphs/matching/graph_match.h"
+#include "is_graphs/matching/matcher_config.h"
+#include "is_graphs/matching/rigid_fit.h"
+#include "is_graphs/matching/room_descriptor.h"
+
+namespace is_graphs {
+namespace matching {
+
+/// One room pair of a global hypothesis, evaluated under the hypothesis' motion.
+struct MemberPair {
+  int s_room{0};  // descriptor indices
+  int a_room{0};
+  bool full_rank{false};
+  PairEvaluation evaluation;
+};
+
+/// A global candidate: room pairs combined bottom-up under one motion, and its global affinity.
+struct Hypothesis {
+  Pose2 pose;  // bim_T_map
+  std::vector<MemberPair> members;
+  double score{0.0};
+  int rooms{0};  // matched S-rooms
+};
+
+/// Σ over the pairs of weight × quality (weight 1 for a room, corridor_weight for a pair that
+/// fixes the motion only across an axis).
+double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfig& config);
+
+/// The motion fitted to all surface pairs of the members and the centres of the full-rank ones.
+RigidFit FitMembers(const std::vector<MemberPair>& members,
+                    const std::vector<RoomDescriptor>& s_rooms,
+                    const std::vector<RoomDescriptor>& a_rooms, const MatcherConfig& config);
+
+/// True when the two motions agree within the cluster tolerances at every one of `points` (the
+/// S-Graph's room centres, in M): the same hypothesis up to noise.
+bool SameMotion(const Pose2& a, const Pose2& b, const std::vector<Eigen::Vector2d>& points,
+                const MatcherConfig& config);
+
+/// The decision over a set of hypotheses: sorted by score, merged where they imply the same
+/// motion, the best cluster = those within ambiguity_margin of the best. UNIQUE when it holds
+/// one hypothesis that pairs at least min_matched_rooms and min_matched_fraction of the
+/// `s_room_count` rooms; NONE when there is no hypothesis; else AMBIGUOUS.
+struct Decision {
+  MatchStatus status{MatchStatus::kNone};
+  int best{-1};                  // index into the (sorted) hypotheses
+  std::vector<int> competitors;  // other members of the best cluster
+};
+
+Decision Decide(std::vector<Hypothesis>& hypotheses, const std::vector<Eigen::Vector2d>& s_points,
+                int s_room_count, const MatcherConfig& config);
+
+}  // namespace matching
+}  // namespace is_graphs

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <string>
+
+namespace is_graphs {
+namespace matching {
+
+/// Every tolerance and weight of the A-Graph <-> S-Graph matcher (config/matcher.yaml documents
+/// the ROS parameters of the same names). Lengths in metres, angles in degrees.
+struct MatcherConfig {
+  // --- local (room pair) candidates ---
+  double angle_tolerance_deg{8.0};  // an S-plane and an A-surface normal, after the yaw
+  double offset_tolerance{0.3};     // plane offset residual (BIM deviations, noise)
+  double centre_tolerance{0.6};     // room centre residual (centres of polygons are vague)
+  double min_plane_fraction{0.6};   // share of a room's S-planes that must find an A-surface
+  // --- global candidates (combining room pairs) ---
+  double yaw_tolerance_deg{6.0};  // room pairs of one hypothesis agree on the yaw this well
+  double lever_arm_slack{0.035};  // extra tolerance per metre from the seed room (yaw error)
+  double quality_sigma{0.12};     // plane residual of a room pair -> quality exp(-r²/2σ²)
+  double corridor_weight{0.75};   // weight of a corridor pair in the score (a room counts 1)
+  // --- decision ---
+  double ambiguity_margin{0.4};     // hypotheses scoring within this of the best compete
+  double cluster_yaw_deg{3.0};      // hypotheses closer than this (and cluster_translation)
+  double cluster_translation{0.5};  //   imply the same motion and are one hypothesis
+  int min_matched_rooms{2};         // a UNIQUE match pairs at least this many S-rooms
+  double min_matched_fraction{0.5};  // ... and at least this share of the S-Graph's rooms
+  int max_seeds{4000};               // bound on the global candidates grown per match
+
+  /// "" when valid, else what is wrong, naming the field.
+  std::string Validate() const;
+};
+
+}  // namespace matching
+}  // namespace is_graphs

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <vector>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/sgraph/sgraph.h"
+
+namespace is_graphs {
+namespace matching {
+
+/// How to make an S-Graph from an A-Graph (for tests and the benchmark, before the S-Graph node
+/// exists): the chosen rooms' surfaces as planes in a map frame M related to B by a planar rigid
+/// motion, with noise, BIM deviations, clutter and rooms the BIM does not have.
+struct SyntheticSGraphConfig {
+  std::vector<int> rooms;  // A-room ids to take; empty: all
+  Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // the truth (yaw + translation)
+  bool mirror{false};             // reflect M (x -> -x): the mirror image of the building
+  double normal_noise_deg{0.0};   // σ of each plane's normal direction (its ends move <= 10 cm)
+  double offset_noise{0.0};       // σ of each plane's offset [m]
+  double centre_noise{0.0};       // σ of each room centre, per axis [m]
+  double bim_deviation{0.0};      // each wall-surface built up to this far from the BIM [m]
+  double corridor_aspect{3.0};    // rooms this elongated become two-plane corridors (<= 0: never)
+  double corridor_shift{0.3};     // a corridor's centre moves along its axis by up to this share
+  int extra_planes{0};            // clutter planes added to random rooms
+  int extra_rooms{0};             // rectangular rooms that are not in the BIM
+  double split_probability{0.0};  // a surface bounding several rooms becomes one plane per room
+  std::uint64_t seed{1};
+};
+
+struct SyntheticSGraph {
+  sgraph::SGraph graph;
+  Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};
+  std::map<int, int> room_truth;   // S-room id -> A-room id (extra rooms absent)
+  std::map<int, int> plane_truth;  // S-plane id -> A-wall-surface id (clutter absent)
+};
+
+SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& building,
+                                    const SyntheticSGraphConfig& config);
+
+/// A motion about z by a uniform yaw with a translation uniform in [-max, max]².
+Eigen::Isometry3d RandomPlanarMotion(std::mt19937_64& rng, double max_translation);
+
+/// `count` rooms a robot could have walked through: a random start room, then random rooms
+/// adjacent through doorways (falling back to the nearest rooms when doorways run out).
+std::vector<int> RandomConnectedRooms(const agraph::AGraph& building, int count,
+                                      std::mt19937_64& rng);
+
+/// Whether a room is elongated enough to be seen as a corridor (the generator's rule).
+bool IsCorridorLike(const agraph::AGraph& building, int room, double min_aspect);
+
+}  // namespace matching
+}  // namespace is_graphs

@@ -1,0 +1,217 @@
+#include "is_graphs/matching/candidate_graph.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace is_graphs {
+namespace matching {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kSpanAngle = 20.0 * kDegToRad;  // planes this far apart fix a translation
+
+double Heading(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
+
+int NeededPlanes(int n, double fraction) {
+  return std::max(std::min(n, 2), static_cast<int>(std::ceil(fraction * n - 1e-9)));
+}
+
+PointNormal Foot(const RoomDescriptor& room, int plane) {
+  const PlaneFeature& f = room.planes[plane];
+  return {room.centre - f.r * f.normal, f.normal};
+}
+
+/// Drops surface pairs inconsistent with the others (most conflicts first) until all agree.
+void PruneInconsistent(const RoomDescriptor& s, const RoomDescriptor& a, double angle_tol,
+                       double distance_tol, std::vector<std::pair<int, int>>& pairs) {
+  while (pairs.size() >= 2) {
+    std::vector<int> conflicts(pairs.size(), 0);
+    for (size_t i = 0; i < pairs.size(); ++i)
+      for (size_t j = i + 1; j < pairs.size(); ++j) {
+        const double w = SurfacePairConsistency(Foot(s, pairs[i].first), Foot(s, pairs[j].first),
+                                                Foot(a, pairs[i].second), Foot(a, pairs[j].second),
+                                                angle_tol, distance_tol);
+        if (w == 0.0) ++conflicts[i], ++conflicts[j];
+      }
+    const auto worst = std::max_element(conflicts.begin(), conflicts.end());
+    if (*worst == 0) return;
+    pairs.erase(pairs.begin() + (worst - conflicts.begin()));
+  }
+}
+
+}  // namespace
+
+EvaluationTolerances EvaluationTolerances::From(const MatcherConfig& config, double slack) {
+  EvaluationTolerances t;
+  t.offset = config.offset_tolerance + slack;
+  t.centre = config.centre_tolerance + slack;
+  t.angle_rad = config.angle_tolerance_deg * kDegToRad;
+  t.min_plane_fraction = config.min_plane_fraction;
+  t.quality_sigma = config.quality_sigma;
+  return t;
+}
+
+PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, const Pose2& pose,
+                            bool full_rank, const EvaluationTolerances& tol) {
+  PairEvaluation out;
+  const double min_cos = std::cos(tol.angle_rad);
+  const Eigen::Vector2d centre_b = pose.Apply(s.centre);
+  if (full_rank) {
+    if ((centre_b - a.centre).norm() > tol.centre) return out;
+  } else if (!a.polygon.empty() && SignedDistanceToPolygon(a.polygon, centre_b) > tol.centre) {
+    return out;
+  }
+  std::vector<bool> a_used(a.planes.size(), false);
+  double sum_sq = 0.0;
+  for (size_t i = 0; i < s.planes.size(); ++i) {
+    const Eigen::Vector2d n = pose.Rotate(s.planes[i].normal);
+    const double d = s.planes[i].d + n.dot(pose.t);
+    const double r = n.dot(a.centre) - d;  // A-centre in front of the moved S-plane
+    int best = -1;
+    double best_err = tol.offset;
+    for (size_t j = 0; j < a.planes.size(); ++j) {
+      if (n.dot(a.planes[j].normal) < min_cos) continue;
+      const double err = std::abs(r - a.planes[j].r);
+      if (err <= best_err) best = static_cast<int>(j), best_err = err;
+    }
+    if (best < 0) continue;
+    out.surfaces.emplace_back(static_cast<int>(i), best);
+    out.residuals.push_back(best_err);
+    a_used[best] = true;
+    sum_sq += best_err * best_err;
+  }
+  const int n = static_cast<int>(s.planes.size());
+  const int matched = static_cast<int>(out.surfaces.size());
+  if (matched == 0 || matched < NeededPlanes(n, tol.min_plane_fraction)) return out;
+
+  // Coverage of the A-room by what was seen: all its surfaces for a closed room, the ones
+  // parallel to the seen planes for a corridor (its ends are not part of it).
+  double seen = 0.0, total = 0.0;
+  for (size_t j = 0; j < a.planes.size(); ++j) {
+    bool relevant = full_rank;
+    for (const auto& p : s.planes)
+      relevant = relevant || std::abs(pose.Rotate(p.normal).dot(a.planes[j].normal)) >= min_cos;
+    if (!relevant) continue;
+    const double len = a.planes[j].length > 0.0 ? a.planes[j].length : 1.0;
+    total += len;
+    if (a_used[j]) seen += len;
+  }
+  const double coverage = total > 0.0 ? seen / total : 0.0;
+  out.rms = std::sqrt(sum_sq / matched);
+  const double q = out.rms / tol.quality_sigma;
+  out.quality = (static_cast<double>(matched) / n) * (0.5 + 0.5 * coverage) * std::exp(-0.5 * q * q);
+  out.ok = true;
+  return out;
+}
+
+std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s_index,
+                                                  const std::vector<RoomDescriptor>& a_rooms,
+                                                  const MatcherConfig& config) {
+  std::vector<RoomCandidate> out;
+  if (s.planes.empty()) return out;
+  const EvaluationTolerances tol = EvaluationTolerances::From(config);
+  const double r_tol = config.offset_tolerance + config.centre_tolerance;
+  const double min_cos = std::cos(tol.angle_rad);
+  const int needed = NeededPlanes(static_cast<int>(s.planes.size()), config.min_plane_fraction);
+
+  // Anchors: the first plane and the first one not parallel to it (an extra plane in the
+  // S-room must not hide the room: two anchors).
+  std::vector<int> anchors{0};
+  for (size_t i = 1; i < s.planes.size(); ++i)
+    if (std::abs(s.planes[i].normal.dot(s.planes[0].normal)) < std::cos(kSpanAngle)) {
+      anchors.push_back(static_cast<int>(i));
+      break;
+    }
+
+  for (size_t ai = 0; ai < a_rooms.size(); ++ai) {
+    const RoomDescriptor& a = a_rooms[ai];
+    // Structural pre-check (cheap): enough S-planes have an A-surface at their distance.
+    int compatible = 0;
+    for (const auto& p : s.planes)
+      for (const auto& q : a.planes)
+        if (std::abs(p.r - q.r) <= r_tol) {
+          ++compatible;
+          break;
+        }
+    if (compatible < needed) continue;
+
+    std::vector<double> yaws;
+    for (int anchor : anchors)
+      for (const auto& q : a.planes) {
+        if (std::abs(s.planes[anchor].r - q.r) > r_tol) continue;
+        const double yaw = Heading(q.normal) - Heading(s.planes[anchor].normal);
+        if (std::none_of(yaws.begin(), yaws.end(),
+                         [&](double y) { return AngleDistance(y, yaw) < 1.0 * kDegToRad; }))
+          yaws.push_back(yaw);
+      }
+
+    const size_t first_of_room = out.size();
+    for (double yaw : yaws) {
+      const Pose2 rot{yaw, Eigen::Vector2d::Zero()};
+      std::vector<std::pair<int, int>> pairs;
+      for (size_t i = 0; i < s.planes.size(); ++i) {
+        const Eigen::Vector2d n = rot.Rotate(s.planes[i].normal);
+        int best = -1;
+        double best_err = r_tol;
+        for (size_t j = 0; j < a.planes.size(); ++j) {
+          if (n.dot(a.planes[j].normal) < min_cos) continue;
+          const double err = std::abs(s.planes[i].r - a.planes[j].r);
+          if (err <= best_err) best = static_cast<int>(j), best_err = err;
+        }
+        if (best >= 0) pairs.emplace_back(static_cast<int>(i), best);
+      }
+      PruneInconsistent(s, a, 2.0 * tol.angle_rad, 2.0 * r_tol, pairs);
+      if (static_cast<int>(pairs.size()) < needed) continue;
+
+      std::vector<PlaneCorrespondence> planes;
+      std::vector<PlaneFeature> matched_s;
+      for (const auto& [i, j] : pairs) {
+        planes.push_back({s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d,
+                          a.centre});
+        matched_s.push_back(s.planes[i]);
+      }
+      const bool full_rank = s.kind == RoomKind::kRoom && PlanesSpanTwoDirections(matched_s, kSpanAngle);
+      // The centre as a prior: firm for a room, only nominal along a corridor's axis.
+      const std::vector<PointCorrespondence> centre{
+          {s.centre, a.centre, full_rank ? config.centre_tolerance : 100.0}};
+      RigidFit fit = FitYawTranslation(planes, centre);
+      if (AngleDistance(fit.pose.yaw, yaw) > 2.0 * tol.angle_rad) continue;
+
+      RoomCandidate c;
+      c.s_room = s_index;
+      c.a_room = static_cast<int>(ai);
+      c.pose = fit.pose;
+      c.full_rank = full_rank;
+      const Eigen::Vector2d n0 = c.pose.Rotate(matched_s.front().normal);
+      c.axis = Eigen::Vector2d(-n0.y(), n0.x());
+      const PairEvaluation eval = EvaluatePair(s, a, c.pose, full_rank, tol);
+      if (!eval.ok) continue;
+      c.quality = eval.quality;
+      // One candidate per A-room and yaw (the best).
+      bool merged = false;
+      for (size_t k = first_of_room; k < out.size(); ++k) {
+        if (AngleDistance(out[k].pose.yaw, c.pose.yaw) < 2.0 * kDegToRad) {
+          if (c.quality > out[k].quality) out[k] = c;
+          merged = true;
+          break;
+        }
+      }
+      if (!merged) out.push_back(c);
+    }
+  }
+  return out;
+}
+
+RoomCorrespondence ToCorrespondence(const RoomCandidate& c, const RoomDescriptor& s,
+                                    const RoomDescriptor& a) {
+  RoomCorrespondence out;
+  out.s_centre = s.centre;
+  out.a_centre = a.centre;
+  out.yaw = c.pose.yaw;
+  out.axis_free = !c.full_rank;
+  out.axis_b = c.axis;
+  return out;
+}
+
+}  // namespace matching
+}  // namespace is_graphs

@@ -1,0 +1,202 @@
+#include "is_graphs/matching/graph_matcher.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "is_graphs/matching/input_checks.h"
+
+namespace is_graphs {
+namespace matching {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+/// An S-room that moved this little since the last revision keeps its candidates.
+bool Unchanged(const RoomDescriptor& a, const RoomDescriptor& b) {
+  if (a.kind != b.kind || a.planes.size() != b.planes.size()) return false;
+  if ((a.centre - b.centre).norm() > 0.05) return false;
+  for (size_t i = 0; i < a.planes.size(); ++i) {
+    const auto &p = a.planes[i], &q = b.planes[i];
+    if (p.id != q.id || p.normal.dot(q.normal) < std::cos(0.5 * kDegToRad) ||
+        std::abs(p.d - q.d) > 0.05)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {}
+
+std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
+  a_rooms_ = DescribeARooms(graph);
+  a_sha256_ = graph.source.sha256;
+  has_agraph_ = true;
+  cache_.clear();
+  last_best_.reset();
+  return CheckAGraph(graph);
+}
+
+Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
+                              const std::vector<RoomDescriptor>& s_rooms,
+                              const std::vector<std::vector<RoomCandidate>>& candidates) const {
+  Hypothesis h;
+  h.pose = start;
+  std::vector<bool> a_taken(a_rooms_.size(), false);
+  Eigen::Vector2d anchor = Eigen::Vector2d::Zero();
+  for (const auto& s : s_rooms) anchor += s.centre / static_cast<double>(s_rooms.size());
+  RoomCorrespondence seed_corr;
+  int storey = -1;  // the storey of the first pair; the others must be on it
+  if (seed) {
+    const auto& s = s_rooms[seed->s_room];
+    const auto& a = a_rooms_[seed->a_room];
+    anchor = s.centre;
+    seed_corr = ToCorrespondence(*seed, s, a);
+    PairEvaluation eval = EvaluatePair(s, a, h.pose, seed->full_rank, EvaluationTolerances::From(config_));
+    if (!eval.ok) return h;
+    h.members.push_back({seed->s_room, seed->a_room, seed->full_rank, std::move(eval)});
+    a_taken[seed->a_room] = seed->full_rank;
+    storey = a.storey;
+  }
+  std::vector<int> order(s_rooms.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+    return (s_rooms[x].centre - anchor).norm() < (s_rooms[y].centre - anchor).norm();
+  });
+  const double yaw_tol = config_.yaw_tolerance_deg * kDegToRad;
+  for (int si : order) {
+    if (seed && si == seed->s_room) continue;
+    const RoomDescriptor& s = s_rooms[si];
+    const auto tol = EvaluationTolerances::From(
+        config_, config_.lever_arm_slack * (s.centre - anchor).norm());
+    const RoomCandidate* best = nullptr;
+    PairEvaluation best_eval;
+    for (const RoomCandidate& c : candidates[si]) {
+      if (AngleDistance(c.pose.yaw, h.pose.yaw) > yaw_tol) continue;
+      if (c.full_rank && a_taken[c.a_room]) continue;
+      const RoomDescriptor& a = a_rooms_[c.a_room];
+      if (storey >= 0 && a.storey != storey) continue;
+      if (seed && RoomPairConsistency(seed_corr, ToCorrespondence(c, s, a), config_) == 0.0) continue;
+      PairEvaluation eval = EvaluatePair(s, a, h.pose, c.full_rank, tol);
+      if (eval.ok && (!best || eval.quality > best_eval.quality)) best = &c, best_eval = std::move(eval);
+    }
+    if (!best) continue;
+    h.members.push_back({si, best->a_room, best->full_rank, std::move(best_eval)});
+    if (best->full_rank) a_taken[best->a_room] = true;
+    if (storey < 0) storey = a_rooms_[best->a_room].storey;
+    const RigidFit fit = FitMembers(h.members, s_rooms, a_rooms_, config_);
+    if (fit.translation_determined && fit.planes_determine_translation) h.pose = fit.pose;
+  }
+  // Final check of every pair under the motion fitted to all of them, without slack.
+  const auto strict = EvaluationTolerances::From(config_);
+  for (int pass = 0; pass < 2 && !h.members.empty(); ++pass) {
+    const RigidFit fit = FitMembers(h.members, s_rooms, a_rooms_, config_);
+    if (fit.translation_determined && fit.planes_determine_translation) h.pose = fit.pose;
+    std::vector<MemberPair> kept;
+    for (auto& m : h.members) {
+      m.evaluation = EvaluatePair(s_rooms[m.s_room], a_rooms_[m.a_room], h.pose, m.full_rank, strict);
+      if (m.evaluation.ok) kept.push_back(std::move(m));
+    }
+    h.members = std::move(kept);
+  }
+  // A hypothesis must fix the motion: at least one full-rank pair.
+  if (std::none_of(h.members.begin(), h.members.end(), [](const MemberPair& m) { return m.full_rank; }))
+    h.members.clear();
+  h.score = GlobalAffinity(h.members, config_);
+  h.rooms = static_cast<int>(h.members.size());
+  return h;
+}
+
+GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
+  const auto t0 = std::chrono::steady_clock::now();
+  stats_ = MatchStats{};
+  GraphMatch out;
+  out.a_graph_sha256 = a_sha256_;
+  out.s_graph_revision = graph.revision;
+  out.warnings = CheckSGraph(graph);
+  const std::vector<RoomDescriptor> s_rooms = DescribeSRooms(graph);
+  stats_.s_rooms = static_cast<int>(s_rooms.size());
+  if (a_rooms_.empty()) out.warnings.push_back("no A-Graph rooms with surfaces to match against");
+  if (s_rooms.empty()) out.warnings.push_back("no S-Graph rooms with usable planes to match");
+  if (a_rooms_.empty() || s_rooms.empty()) return out;
+
+  // 1. Local candidates, reused for S-rooms that did not change.
+  std::map<int, CachedRoom> cache;
+  std::vector<std::vector<RoomCandidate>> candidates(s_rooms.size());
+  for (size_t i = 0; i < s_rooms.size(); ++i) {
+    const auto it = cache_.find(s_rooms[i].id);
+    if (it != cache_.end() && Unchanged(it->second.descriptor, s_rooms[i])) {
+      candidates[i] = it->second.candidates;
+      for (auto& c : candidates[i]) c.s_room = static_cast<int>(i);
+      ++stats_.reused_rooms;
+    } else {
+      candidates[i] = GenerateRoomCandidates(s_rooms[i], static_cast<int>(i), a_rooms_, config_);
+    }
+    stats_.candidates += static_cast<int>(candidates[i].size());
+    cache[s_rooms[i].id] = {s_rooms[i], candidates[i]};
+  }
+  cache_ = std::move(cache);
+
+  // 2. Global candidates from seeds (best local candidates first), skipping seeds that an
+  // earlier hypothesis already holds under the same motion.
+  std::vector<const RoomCandidate*> seeds;
+  for (const auto& list : candidates)
+    for (const auto& c : list)
+      if (c.full_rank) seeds.push_back(&c);
+  std::stable_sort(seeds.begin(), seeds.end(), [](const RoomCandidate* x, const RoomCandidate* y) {
+    return x->quality > y->quality;
+  });
+  std::vector<Eigen::Vector2d> s_points;
+  for (const auto& s : s_rooms) s_points.push_back(s.centre);
+  std::vector<Hypothesis> hypotheses;
+  if (last_best_) hypotheses.push_back(Grow(*last_best_, nullptr, s_rooms, candidates));
+  for (const RoomCandidate* seed : seeds) {
+    if (stats_.seeds >= config_.max_seeds) break;
+    const bool covered = std::any_of(hypotheses.begin(), hypotheses.end(), [&](const Hypothesis& h) {
+      return std::any_of(h.members.begin(), h.members.end(), [&](const MemberPair& m) {
+               return m.s_room == seed->s_room && m.a_room == seed->a_room;
+             }) && SameMotion(h.pose, seed->pose, {s_rooms[seed->s_room].centre}, config_);
+    });
+    if (covered) continue;
+    ++stats_.seeds;
+    hypotheses.push_back(Grow(seed->pose, seed, s_rooms, candidates));
+  }
+
+  // 3. Decision.
+  const Decision decision = Decide(hypotheses, s_points, static_cast<int>(s_rooms.size()), config_);
+  stats_.hypotheses = static_cast<int>(hypotheses.size());
+  out.status = decision.status;
+  if (decision.best >= 0) {
+    const Hypothesis& best = hypotheses[decision.best];
+    last_best_ = best.pose;
+    out.score = best.score;
+    out.hypotheses = static_cast<unsigned>(1 + decision.competitors.size());
+    out.bim_T_map = best.pose.ToIsometry();
+    std::map<int, MatchPair> surfaces;  // by S-plane id: the best pair
+    for (const auto& m : best.members) {
+      const RoomDescriptor& s = s_rooms[m.s_room];
+      const RoomDescriptor& a = a_rooms_[m.a_room];
+      out.room_pairs.push_back({a.id, s.id, m.evaluation.quality});
+      for (size_t k = 0; k < m.evaluation.surfaces.size(); ++k) {
+        const auto [i, j] = m.evaluation.surfaces[k];
+        const double r = m.evaluation.residuals[k] / config_.quality_sigma;
+        const MatchPair pair{a.planes[j].id, s.planes[i].id, std::exp(-0.5 * r * r)};
+        auto it = surfaces.find(pair.s_id);
+        if (it == surfaces.end() || it->second.score < pair.score) surfaces[pair.s_id] = pair;
+      }
+    }
+    std::sort(out.room_pairs.begin(), out.room_pairs.end(),
+              [](const MatchPair& x, const MatchPair& y) { return x.s_id < y.s_id; });
+    for (const auto& [id, pair] : surfaces) out.surface_pairs.push_back(pair);
+    for (int k : decision.competitors)
+      out.alternatives.push_back({hypotheses[k].pose.ToIsometry(), hypotheses[k].score, hypotheses[k].rooms});
+  }
+  stats_.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace matching
+}  // namespace is_graphs

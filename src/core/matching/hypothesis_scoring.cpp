@@ -1,0 +1,82 @@
+#include "is_graphs/matching/hypothesis_scoring.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace is_graphs {
+namespace matching {
+
+double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfig& config) {
+  double score = 0.0;
+  for (const auto& m : members)
+    score += (m.full_rank ? 1.0 : config.corridor_weight) * m.evaluation.quality;
+  return score;
+}
+
+RigidFit FitMembers(const std::vector<MemberPair>& members,
+                    const std::vector<RoomDescriptor>& s_rooms,
+                    const std::vector<RoomDescriptor>& a_rooms, const MatcherConfig& config) {
+  std::vector<PlaneCorrespondence> planes;
+  std::vector<PointCorrespondence> points;
+  for (const auto& m : members) {
+    const RoomDescriptor& s = s_rooms[m.s_room];
+    const RoomDescriptor& a = a_rooms[m.a_room];
+    for (const auto& [i, j] : m.evaluation.surfaces)
+      planes.push_back({s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d,
+                        a.centre});
+    if (m.full_rank) points.push_back({s.centre, a.centre, config.centre_tolerance});
+  }
+  return FitYawTranslation(planes, points);
+}
+
+bool SameMotion(const Pose2& a, const Pose2& b, const std::vector<Eigen::Vector2d>& points,
+                const MatcherConfig& config) {
+  if (AngleDistance(a.yaw, b.yaw) > config.cluster_yaw_deg * M_PI / 180.0) return false;
+  if (points.empty()) return (a.t - b.t).norm() <= config.cluster_translation;
+  return std::all_of(points.begin(), points.end(), [&](const Eigen::Vector2d& p) {
+    return (a.Apply(p) - b.Apply(p)).norm() <= config.cluster_translation;
+  });
+}
+
+Decision Decide(std::vector<Hypothesis>& hypotheses, const std::vector<Eigen::Vector2d>& s_points,
+                int s_room_count, const MatcherConfig& config) {
+  Decision decision;
+  hypotheses.erase(std::remove_if(hypotheses.begin(), hypotheses.end(),
+                                  [](const Hypothesis& h) { return h.members.empty(); }),
+                   hypotheses.end());
+  if (hypotheses.empty()) return decision;
+  // Deterministic order: score, then the pairs themselves.
+  auto key = [](const Hypothesis& h) {
+    std::vector<std::pair<int, int>> pairs;
+    for (const auto& m : h.members) pairs.emplace_back(m.s_room, m.a_room);
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+  };
+  std::stable_sort(hypotheses.begin(), hypotheses.end(),
+                   [&](const Hypothesis& x, const Hypothesis& y) {
+                     if (x.score != y.score) return x.score > y.score;
+                     return key(x) < key(y);
+                   });
+  // Cluster by motion: a hypothesis implying the motion of a better one is that one.
+  std::vector<int> clusters;
+  for (size_t i = 0; i < hypotheses.size(); ++i) {
+    const bool known = std::any_of(clusters.begin(), clusters.end(), [&](int c) {
+      return SameMotion(hypotheses[c].pose, hypotheses[i].pose, s_points, config);
+    });
+    if (!known) clusters.push_back(static_cast<int>(i));
+  }
+  decision.best = clusters.front();
+  const Hypothesis& best = hypotheses[decision.best];
+  for (size_t k = 1; k < clusters.size(); ++k)
+    if (hypotheses[clusters[k]].score >= best.score - config.ambiguity_margin)
+      decision.competitors.push_back(clusters[k]);
+  const bool enough = best.rooms >= config.min_matched_rooms &&
+                      best.rooms >= config.min_matched_fraction * s_room_count - 1e-9;
+  decision.status = decision.competitors.empty() && enough ? MatchStatus::kUnique
+                                                           : MatchStatus::kAmbiguous;
+  return decision;
+}
+
+}  // namespace matching
+}  // namespace is_graphs

@@ -1,0 +1,51 @@
+#include "is_graphs/matching/matcher_config.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace is_graphs {
+namespace matching {
+namespace {
+
+// "" when lo < value <= hi (lo_open) or lo <= value <= hi, else a message naming `name`.
+std::string Check(const char* name, double value, double lo, double hi, bool lo_open) {
+  const bool ok = std::isfinite(value) && (lo_open ? value > lo : value >= lo) && value <= hi;
+  if (ok) return "";
+  std::ostringstream out;
+  out << name << " must be in " << (lo_open ? "(" : "[") << lo << ", " << hi << "] (got " << value
+      << ")";
+  return out.str();
+}
+
+}  // namespace
+
+std::string MatcherConfig::Validate() const {
+  const struct {
+    const char* name;
+    double value, lo, hi;
+    bool lo_open;
+  } fields[] = {
+      {"angle_tolerance_deg", angle_tolerance_deg, 0.0, 45.0, true},
+      {"offset_tolerance", offset_tolerance, 0.0, 5.0, true},
+      {"centre_tolerance", centre_tolerance, 0.0, 10.0, true},
+      {"min_plane_fraction", min_plane_fraction, 0.0, 1.0, true},
+      {"yaw_tolerance_deg", yaw_tolerance_deg, 0.0, 45.0, true},
+      {"lever_arm_slack", lever_arm_slack, 0.0, 1.0, false},
+      {"quality_sigma", quality_sigma, 0.0, 5.0, true},
+      {"corridor_weight", corridor_weight, 0.0, 1.0, true},
+      {"ambiguity_margin", ambiguity_margin, 0.0, 100.0, false},
+      {"cluster_yaw_deg", cluster_yaw_deg, 0.0, 90.0, true},
+      {"cluster_translation", cluster_translation, 0.0, 100.0, true},
+      {"min_matched_rooms", static_cast<double>(min_matched_rooms), 1.0, 1e6, false},
+      {"min_matched_fraction", min_matched_fraction, 0.0, 1.0, false},
+      {"max_seeds", static_cast<double>(max_seeds), 1.0, 1e9, false},
+  };
+  for (const auto& f : fields) {
+    const std::string error = Check(f.name, f.value, f.lo, f.hi, f.lo_open);
+    if (!error.empty()) return error;
+  }
+  return "";
+}
+
+}  // namespace matching
+}  // namespace is_graphs

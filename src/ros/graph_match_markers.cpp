@@ -1,0 +1,99 @@
+#include "graph_match_markers.h"
+
+#include <map>
+
+#include "point_conversions.h"
+
+namespace is_graphs {
+namespace ros_markers {
+namespace {
+
+using ros_conversions::ToPoint;
+
+std_msgs::ColorRGBA Colour(float r, float g, float b, float a = 1.0f) {
+  std_msgs::ColorRGBA c;
+  c.r = r, c.g = g, c.b = b, c.a = a;
+  return c;
+}
+
+visualization_msgs::Marker Make(const GraphMatchMarkerStyle& style, const std::string& ns,
+                                int type, const std_msgs::ColorRGBA& colour, double scale) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = style.frame_id;
+  m.ns = ns;
+  m.id = 0;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = scale;
+  m.color = colour;
+  return m;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatch& match,
+                                                       const agraph::AGraph& a_graph,
+                                                       const sgraph::SGraph& s_graph,
+                                                       const GraphMatchMarkerStyle& style) {
+  visualization_msgs::MarkerArray array;
+  visualization_msgs::Marker clear;
+  clear.header.frame_id = style.frame_id;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  array.markers.push_back(clear);
+
+  const bool unique = match.status == matching::MatchStatus::kUnique;
+  const auto colour = unique ? Colour(0.1f, 0.9f, 0.2f) : Colour(1.0f, 0.6f, 0.0f);
+  const Eigen::Isometry3d& t = match.bim_T_map;
+  const Eigen::Vector3d lift(0.0, 0.0, style.s_graph_lift);
+  std::map<int, const sgraph::Room*> s_rooms;
+  for (const auto& r : s_graph.rooms) s_rooms.emplace(r.id, &r);
+  std::map<int, const sgraph::Plane*> s_planes;
+  for (const auto& p : s_graph.planes) s_planes.emplace(p.id, &p);
+
+  auto rooms = Make(style, "room_pairs", visualization_msgs::Marker::LINE_LIST, colour,
+                    2.0 * style.line_width);
+  auto centres = Make(style, "s_rooms", visualization_msgs::Marker::SPHERE_LIST, colour, 0.3);
+  for (const auto& p : match.room_pairs) {
+    const auto s = s_rooms.find(p.s_id);
+    if (p.a_id < 0 || p.a_id >= static_cast<int>(a_graph.rooms.size()) || s == s_rooms.end())
+      continue;
+    const Eigen::Vector3d s_point = t * s->second->center + lift;
+    if (!s_point.allFinite()) continue;
+    rooms.points.push_back(ToPoint(a_graph.rooms[p.a_id].center));
+    rooms.points.push_back(ToPoint(s_point));
+    centres.points.push_back(ToPoint(s_point));
+  }
+
+  auto surfaces = Make(style, "surface_pairs", visualization_msgs::Marker::LINE_LIST,
+                       Colour(colour.r, colour.g, colour.b, 0.6f), style.line_width);
+  for (const auto& p : match.surface_pairs) {
+    const auto s = s_planes.find(p.s_id);
+    if (p.a_id < 0 || p.a_id >= static_cast<int>(a_graph.surfaces.size()) || s == s_planes.end())
+      continue;
+    const auto& a = a_graph.surfaces[p.a_id];
+    const Eigen::Vector2d mid = 0.5 * (a.start + a.end);
+    const Eigen::Vector3d a_point(mid.x(), mid.y(), 0.5 * (a.z_min + a.z_max));
+    // The S-plane's point nearest the A-surface's middle (extents may be split or merged).
+    const geometry::Plane s_in_bim = s->second->plane.Transformed(t);
+    const Eigen::Vector3d s_point = s_in_bim.Project(a_point) + lift;
+    if (!s_point.allFinite() || !a_point.allFinite()) continue;
+    surfaces.points.push_back(ToPoint(a_point));
+    surfaces.points.push_back(ToPoint(s_point));
+  }
+
+  auto text = Make(style, "status", visualization_msgs::Marker::TEXT_VIEW_FACING, colour, 0.8);
+  Eigen::Vector3d text_at = Eigen::Vector3d::Zero();
+  for (const auto& r : a_graph.rooms) text_at += r.center / std::max<size_t>(1, a_graph.rooms.size());
+  text.pose.position = ToPoint(text_at + lift + Eigen::Vector3d(0, 0, 2.0));
+  text.text = std::string(matching::ToString(match.status)) + " (" +
+              std::to_string(match.hypotheses) + " hypotheses, S-Graph rev " +
+              std::to_string(match.s_graph_revision) + ")";
+  for (auto* m : {&rooms, &centres, &surfaces})
+    if (!m->points.empty()) array.markers.push_back(*m);
+  array.markers.push_back(text);
+  return array;
+}
+
+}  // namespace ros_markers
+}  // namespace is_graphs

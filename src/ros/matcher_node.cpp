@@ -1,0 +1,172 @@
+// matcher_node: matches each S-Graph revision (`s_graph`) against the building's A-Graph
+// (`a_graph`, latched) and publishes `graph_match` (latched) and `graph_match/markers`. Thin:
+// the work is in is_graphs_core (matching::GraphMatcher). Matching runs on a worker thread that
+// always takes the newest S-Graph, so a slow match never piles up callbacks.
+#include <is_graphs/AGraph.h>
+#include <is_graphs/GraphMatch.h>
+#include <is_graphs/SGraph.h>
+#include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <condition_variable>
+#include <cstdlib>
+#include <mutex>
+#include <thread>
+
+#include "agraph_conversions.h"
+#include "graph_match_conversions.h"
+#include "graph_match_markers.h"
+#include "is_graphs/matching/graph_matcher.h"
+#include "param_helpers.h"
+#include "sgraph_conversions.h"
+
+namespace is_graphs {
+namespace {
+
+struct MatcherNodeParams {
+  matching::MatcherConfig matcher;
+  ros_markers::GraphMatchMarkerStyle markers;
+};
+
+MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
+  MatcherNodeParams p;
+  auto& c = p.matcher;
+  ros_params::Read(pnh, "angle_tolerance_deg", c.angle_tolerance_deg);
+  ros_params::Read(pnh, "offset_tolerance", c.offset_tolerance);
+  ros_params::Read(pnh, "centre_tolerance", c.centre_tolerance);
+  ros_params::Read(pnh, "min_plane_fraction", c.min_plane_fraction);
+  ros_params::Read(pnh, "yaw_tolerance_deg", c.yaw_tolerance_deg);
+  ros_params::Read(pnh, "lever_arm_slack", c.lever_arm_slack);
+  ros_params::Read(pnh, "quality_sigma", c.quality_sigma);
+  ros_params::Read(pnh, "corridor_weight", c.corridor_weight);
+  ros_params::Read(pnh, "ambiguity_margin", c.ambiguity_margin);
+  ros_params::Read(pnh, "cluster_yaw_deg", c.cluster_yaw_deg);
+  ros_params::Read(pnh, "cluster_translation", c.cluster_translation);
+  ros_params::Read(pnh, "min_matched_rooms", c.min_matched_rooms);
+  ros_params::Read(pnh, "min_matched_fraction", c.min_matched_fraction);
+  ros_params::Read(pnh, "max_seeds", c.max_seeds);
+  ros_params::Read(pnh, "frame_id", p.markers.frame_id);
+  ros_params::Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
+  if (p.markers.frame_id.empty())
+    throw ros_params::ParamError("parameter '" + pnh.resolveName("frame_id") + "' must not be empty");
+  const std::string error = c.Validate();
+  if (!error.empty())  // Validate names the field, which is the parameter's name
+    throw ros_params::ParamError("parameter '" + pnh.resolveName(error.substr(0, error.find(' '))) +
+                                 "': " + error);
+  return p;
+}
+
+class MatcherNode {
+ public:
+  MatcherNode(ros::NodeHandle& nh, const MatcherNodeParams& params)
+      : params_(params), matcher_(params.matcher) {
+    match_pub_ = nh.advertise<is_graphs::GraphMatch>("graph_match", 1, /*latch=*/true);
+    marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("graph_match/markers", 1, true);
+    a_sub_ = nh.subscribe("a_graph", 1, &MatcherNode::OnAGraph, this);
+    s_sub_ = nh.subscribe("s_graph", 1, &MatcherNode::OnSGraph, this);
+    worker_ = std::thread([this] { Work(); });
+  }
+
+  ~MatcherNode() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    worker_.join();
+  }
+
+ private:
+  void OnAGraph(const is_graphs::AGraph::ConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_a_ = msg;
+    wake_.notify_all();
+  }
+
+  void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (pending_s_)
+      ROS_DEBUG("matcher_node: S-Graph rev %u skipped (rev %u arrived)", pending_s_->revision,
+                msg->revision);
+    pending_s_ = msg;  // only the newest revision is kept
+    wake_.notify_all();
+  }
+
+  void Work() {
+    for (;;) {
+      is_graphs::AGraph::ConstPtr a_msg;
+      is_graphs::SGraph::ConstPtr s_msg;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return stop_ || pending_a_ || (pending_s_ && matcher_.HasAGraph()); });
+        if (stop_) return;
+        a_msg.swap(pending_a_);
+        if (matcher_.HasAGraph() || a_msg) s_msg.swap(pending_s_);
+      }
+      if (a_msg) SetAGraph(*a_msg);
+      if (s_msg) MatchAndPublish(*s_msg);
+    }
+  }
+
+  void SetAGraph(const is_graphs::AGraph& msg) {
+    a_graph_ = ros_conversions::FromMsg(msg);
+    for (const auto& w : matcher_.SetAGraph(a_graph_)) ROS_WARN("matcher_node: A-Graph: %s", w.c_str());
+    ROS_INFO("matcher_node: A-Graph '%s' with %zu rooms (%zu usable)", msg.building.c_str(),
+             a_graph_.rooms.size(), matcher_.ARooms().size());
+    if (last_s_) MatchAndPublish(*last_s_);  // a new building: match the last S-Graph again
+  }
+
+  void MatchAndPublish(const is_graphs::SGraph& msg) {
+    last_s_ = boost::make_shared<is_graphs::SGraph>(msg);
+    const sgraph::SGraph s_graph = ros_conversions::FromMsg(msg);
+    const matching::GraphMatch match = matcher_.Match(s_graph);
+    for (const auto& w : match.warnings)
+      ROS_WARN_THROTTLE(2.0, "matcher_node: %s", w.c_str());
+    const auto& stats = matcher_.LastStats();
+    ROS_INFO("matcher_node: S-Graph rev %u: %s (%u hypotheses, score %.2f, %zu room pairs), "
+             "%d rooms, %d candidates (%d rooms reused), %d seeds, %.1f ms",
+             msg.revision, matching::ToString(match.status), match.hypotheses, match.score,
+             match.room_pairs.size(), stats.s_rooms, stats.candidates, stats.reused_rooms,
+             stats.seeds, stats.milliseconds);
+    is_graphs::GraphMatch out = ros_conversions::ToMsg(match);
+    out.header.frame_id = params_.markers.frame_id;
+    out.header.stamp = msg.header.stamp.isZero() ? ros::Time::now() : msg.header.stamp;
+    match_pub_.publish(out);
+    if (marker_pub_.getNumSubscribers() > 0) {
+      auto markers = ros_markers::BuildGraphMatchMarkers(match, a_graph_, s_graph, params_.markers);
+      for (auto& m : markers.markers) m.header.stamp = out.header.stamp;
+      marker_pub_.publish(markers);
+    }
+  }
+
+  MatcherNodeParams params_;
+  matching::GraphMatcher matcher_;  // used by the worker thread only
+  agraph::AGraph a_graph_;
+  is_graphs::SGraph::ConstPtr last_s_;
+  ros::Publisher match_pub_, marker_pub_;
+  ros::Subscriber a_sub_, s_sub_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  is_graphs::AGraph::ConstPtr pending_a_;
+  is_graphs::SGraph::ConstPtr pending_s_;
+  bool stop_{false};
+  std::thread worker_;
+};
+
+}  // namespace
+}  // namespace is_graphs
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "matcher_node");
+  ros::NodeHandle nh;
+  ros::NodeHandle pnh("~");
+  try {
+    const auto params = is_graphs::ReadParams(pnh);
+    is_graphs::MatcherNode node(nh, params);
+    ros::spin();
+    return EXIT_SUCCESS;
+  } catch (const is_graphs::ros_params::ParamError& e) {
+    ROS_FATAL("matcher_node: %s", e.what());
+    return EXIT_FAILURE;
+  }
+}

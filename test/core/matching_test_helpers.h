@@ -1,0 +1,80 @@
+#pragma once
+// Helpers of the matcher tests: the project's buildings through the real converter (cached),
+// and what "a correct match" means.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "is_graphs/agraph/ifc_conversion.h"
+#include "is_graphs/geometry/se3.h"
+#include "is_graphs/matching/graph_match.h"
+#include "is_graphs/matching/synthetic_sgraph.h"
+
+namespace is_graphs {
+namespace testing {
+
+/// The A-Graph of `path` (an IFC converted with the real converter, cached per process), or
+/// nullptr when the file or the converter is missing (the caller skips).
+inline const agraph::AGraph* LoadBuildingOnce(const std::string& path, std::string* why) {
+  static std::map<std::string, std::unique_ptr<agraph::AGraph>> cache;
+  auto it = cache.find(path);
+  if (it != cache.end()) return it->second.get();
+  std::unique_ptr<agraph::AGraph> graph;
+  const agraph::IfcConversionConfig config;
+  if (!std::filesystem::exists(path)) {
+    *why = path + " is not there";
+  } else if (!std::filesystem::exists(config.converter) || !std::filesystem::exists(config.python)) {
+    *why = "no IFC converter (" + config.python + " " + config.converter + "): run make setup";
+  } else {
+    auto loaded = agraph::LoadBim(path, config);
+    if (loaded.ok()) graph = std::make_unique<agraph::AGraph>(std::move(loaded).value());
+    else *why = loaded.error();
+  }
+  return (cache[path] = std::move(graph)).get();
+}
+
+inline std::string ProjectBim(const std::string& name) {
+  return std::string(IS_GRAPHS_SOURCE_DIR) + "/bim/" + name;
+}
+
+inline int RoomByName(const agraph::AGraph& g, const std::string& name) {
+  for (const auto& r : g.rooms)
+    if (r.name == name) return r.id;
+  ADD_FAILURE() << "no room named " << name;
+  return -1;
+}
+
+/// The motion is the true one (at every S-room) and every room pair is a true pair.
+inline bool MatchIsCorrect(const matching::GraphMatch& m, const matching::SyntheticSGraph& s,
+                           std::string* why = nullptr) {
+  const Eigen::Isometry3d& truth = s.bim_T_map;
+  const double yaw_error = std::abs(geometry::NormalizeAngle(
+      geometry::Yaw(m.bim_T_map) - geometry::Yaw(truth)));
+  std::ostringstream out;
+  bool ok = yaw_error < 3.0 * M_PI / 180.0;
+  if (!ok) out << "yaw off by " << yaw_error * 180.0 / M_PI << " deg; ";
+  for (const auto& r : s.graph.rooms) {
+    const Eigen::Vector3d c(r.center.x(), r.center.y(), 0.0);
+    const double e = ((m.bim_T_map * c) - (truth * c)).head<2>().norm();
+    if (e > 0.6) ok = false, out << "room " << r.id << " placed " << e << " m off; ";
+  }
+  for (const auto& p : m.room_pairs) {
+    const auto it = s.room_truth.find(p.s_id);
+    if (it == s.room_truth.end() || it->second != p.a_id)
+      ok = false, out << "pair S" << p.s_id << "-A" << p.a_id << " is wrong; ";
+  }
+  if (why) *why = out.str();
+  return ok;
+}
+
+}  // namespace testing
+}  // namespace is_graphs
+
+#define IS_GRAPHS_BUILDING_OR_SKIP(var, path)                              \
+  std::string var##_why;                                                   \
+  const agraph::AGraph* var = testing::LoadBuildingOnce(path, &var##_why); \
+  if (!var) GTEST_SKIP() << var##_why
