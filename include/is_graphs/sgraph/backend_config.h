@@ -1,0 +1,35 @@
+#pragma once
+
+#include <string>
+
+namespace is_graphs {
+namespace sgraph {
+
+/// Back end: the Ceres problem over keyframes, planes, rooms, corridors and the floor.
+struct BackendConfig {
+  int max_iterations{6};  // warm-started from the last solution: a few suffice
+  double max_solver_time{0.08};  // s: the budget of one optimization (the next one resumes)
+  int num_threads{1};
+
+  // Odometry edge standard deviations (per metre walked + a floor), in m and rad.
+  double odom_sigma_translation{0.02};
+  double odom_sigma_rotation{0.005};
+  double odom_sigma_z{0.005};         // z, roll, pitch are near-true on a legged robot
+  double odom_sigma_roll_pitch{0.002};
+
+  // Robust losses (on the whitened residual).
+  double plane_huber{1.0};
+  double room_cauchy{1.0};
+
+  // Structure factors: standard deviation of a room / corridor wall about its measured offset,
+  // of a corridor centre along its axis, and of a room about the floor centre.
+  double room_sigma{0.1};
+  double corridor_along_sigma{2.0};
+  double floor_sigma{0.5};
+
+  /// Empty when valid, else what is wrong (naming the field).
+  std::string Validate() const;
+};
+
+}  // namespace sgraph
+}  // namespace is_graphs

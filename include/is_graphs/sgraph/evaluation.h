@@ -1,0 +1,58 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <vector>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/sgraph/sgraph.h"
+
+namespace is_graphs {
+namespace sgraph {
+
+/// Measuring an S-Graph against the truth of a simulated run: ground-truth poses (base_link in
+/// the BIM frame) and the building's A-Graph. Used by bench_sgraph and the rostest.
+struct StampedPose {
+  double stamp{0.0};
+  Eigen::Isometry3d pose{Eigen::Isometry3d::Identity()};
+};
+
+/// Ground truth interpolated at `stamp` (nullopt outside it or across gaps > 0.2 s).
+std::optional<Eigen::Isometry3d> TruthAt(const std::vector<StampedPose>& truth, double stamp);
+
+/// The rigid transform T minimizing Σ |gt_i − T est_i|² (Umeyama, no scale): what evo's
+/// `--align` does.
+Eigen::Isometry3d AlignPositions(const std::vector<Eigen::Vector3d>& estimate,
+                                 const std::vector<Eigen::Vector3d>& truth);
+
+struct TrajectoryError {
+  int keyframes{0};
+  double sgraph_rmse{0.0};  // aligned APE (translation) of the optimized keyframe poses
+  double odom_rmse{0.0};    // the same for the odometry poses of the keyframes
+  Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // the S-Graph alignment
+};
+TrajectoryError EvaluateTrajectory(const SGraph& graph, const std::vector<StampedPose>& truth);
+
+struct PlaneError {
+  int plane{0};
+  int surface{-1};        // the A-Graph wall-surface it lies on; −1: none within 0.3 m / 10°
+  double distance{0.0};   // worst |distance| of the plane's extent ends to the surface [m]
+  double angle_deg{0.0};  // between the normals
+};
+/// Every vertical S-Graph plane with at least `min_points` points, in bim via `bim_T_map`,
+/// against the wall-surfaces of the A-Graph (same facing: both normals point into rooms).
+std::vector<PlaneError> EvaluatePlanes(const SGraph& graph, const agraph::AGraph& building,
+                                       const Eigen::Isometry3d& bim_T_map, int min_points);
+
+struct RoomEvaluation {
+  int walked{0};       // A-Graph rooms with ≥ 2 keyframes inside
+  int found{0};        // of those, rooms with a correct S-Graph room
+  int detected{0};     // S-Graph rooms and corridors
+  int false_rooms{0};  // S-Graph rooms whose centre is not in the room their keyframes are in
+};
+RoomEvaluation EvaluateRooms(const SGraph& graph, const agraph::AGraph& building,
+                             const std::vector<StampedPose>& truth,
+                             const Eigen::Isometry3d& bim_T_map);
+
+}  // namespace sgraph
+}  // namespace is_graphs

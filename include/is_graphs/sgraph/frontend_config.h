@@ -1,0 +1,61 @@
+#pragma once
+
+#include <string>
+
+namespace is_graphs {
+namespace sgraph {
+
+/// Front end of the S-Graph: keyframes, filtering, plane extraction, association, rooms.
+/// Lengths in metres, angles in degrees, times in seconds.
+struct FrontendConfig {
+  // Keyframes: a new one when the robot walked this far or turned this much since the last.
+  double keyframe_distance{0.8};
+  double keyframe_angle_deg{20.0};
+
+  // Odometry: interpolation over gaps longer than this is refused (the scan is skipped);
+  // a stamp this much earlier than the last one is a restart (the graph is reset).
+  double max_odom_gap{0.5};
+  double max_odom_extrapolation{0.15};
+  double time_reset_threshold{1.0};
+
+  // Filtering (ranges from the sensor; voxel edge of the extraction cloud and the map cloud).
+  double min_range{0.6};
+  double max_range{20.0};
+  double voxel_size{0.08};
+  double map_voxel_size{0.15};
+
+  // Plane extraction: sequential RANSAC with a vertical (or horizontal) model.
+  double plane_distance_threshold{0.05};
+  double plane_max_angle_deg{5.0};  // deviation of a wall from vertical, the floor from level
+  int ransac_iterations{150};
+  int min_plane_points{60};
+  int max_planes{24};
+  double min_segment_length{0.6};  // horizontal extent of a wall segment
+  double min_segment_height{0.3};  // vertical extent of a wall segment
+  double segment_gap{0.5};         // coplanar points further apart are different segments
+  double point_sigma{0.03};        // range noise used for the plane covariance
+  int max_effective_points{150};   // cap on independent points (correlated errors)
+  bool extract_floor{true};
+
+  // Association: Mahalanobis gate (chi-square, 3 dof) on the plane difference, with covariance
+  // floors standing in for the pose uncertainty; plus an overlap test on the segments.
+  double association_chi2{11.34};  // 99 %
+  double association_min_sigma_d{0.08};
+  double association_min_sigma_angle_deg{3.0};
+  double association_max_gap{1.0};  // segment may start this far beyond the mapped extent
+
+  // Rooms and corridors.
+  bool detect_rooms{true};
+  double room_max_range{15.0};
+  double room_min_width{1.2};
+  double room_max_width{15.0};
+  double corridor_max_width{3.0};
+  double room_gap_margin{1.1};  // wall segments are extended this much (doorways)
+  int room_rays{180};
+
+  /// Empty when valid, else what is wrong (naming the field).
+  std::string Validate() const;
+};
+
+}  // namespace sgraph
+}  // namespace is_graphs

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "is_graphs/geometry/plane.h"
+#include "is_graphs/sgraph/point_types.h"
+
+namespace is_graphs {
+namespace sgraph {
+
+/// Orthonormal basis [b1 b2] of the plane tangent to the unit sphere at n (3x2). The same
+/// construction as agraph::PlanePriorCost: b1 = n × e_k / |·| with k the axis of n's smallest
+/// component, b2 = n × b1. The minimal plane tangent (2 normal, 1 offset) of the S-Graph's
+/// informations is (B^T δn, δd).
+Eigen::Matrix<double, 3, 2> TangentBasis(const Eigen::Vector3d& n);
+
+/// A least-squares plane with its uncertainty.
+struct PlaneFit {
+  geometry::Plane plane;
+  Eigen::Matrix3d information{Eigen::Matrix3d::Identity()};  // minimal tangent (see above)
+  Eigen::Matrix4d covariance{Eigen::Matrix4d::Identity()};   // of (nx, ny, nz, d), rank 3
+  Eigen::Vector3d centroid{Eigen::Vector3d::Zero()};
+};
+
+/// Total least squares (PCA) of points[indices]; the information is Σ JᵀJ / σ² on the minimal
+/// tangent with r_i = n·p_i − d, scaled down to at most `max_effective_points` independent
+/// points (neighbouring LiDAR points share calibration and deskew errors). nullopt for fewer
+/// than 3 points or a degenerate (collinear) set.
+std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>& indices,
+                                 double point_sigma, int max_effective_points);
+
+/// The information of the minimal tangent as the rank-3 covariance of (n, d): G H⁻¹ Gᵀ with
+/// G = diag(B, 1).
+Eigen::Matrix4d CovarianceFromInformation(const Eigen::Vector3d& n,
+                                          const Eigen::Matrix3d& information);
+
+/// The 3x3 covariance on the minimal tangent at n of a (rank-3) covariance of (n, d).
+Eigen::Matrix3d TangentCovariance(const Eigen::Vector3d& n, const Eigen::Matrix4d& covariance);
+
+/// The plane's covariance after a rigid transform b_T_a (the normal rotates, d shifts by n·t).
+Eigen::Matrix4d TransformPlaneCovariance(const geometry::Plane& plane_a,
+                                         const Eigen::Matrix4d& covariance_a,
+                                         const Eigen::Isometry3d& b_T_a);
+
+}  // namespace sgraph
+}  // namespace is_graphs

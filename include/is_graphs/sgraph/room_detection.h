@@ -1,0 +1,54 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "is_graphs/sgraph/frontend_config.h"
+#include "is_graphs/sgraph/sgraph.h"
+
+namespace is_graphs {
+namespace sgraph {
+
+/// A mapped wall seen from above: the line n·x = d (n horizontal, unit, into the room it was
+/// seen from) and the extent [start, end] of its points.
+struct Wall2D {
+  int id{0};
+  Eigen::Vector2d normal{Eigen::Vector2d::UnitX()};
+  double d{0.0};
+  Eigen::Vector2d start{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d end{Eigen::Vector2d::Zero()};
+};
+
+/// A room or corridor found around a keyframe.
+struct RoomCandidate {
+  RoomType type{RoomType::kRoom};
+  bool rectangular{false};  // the paper's four-wall room (two opposed pairs)
+  Eigen::Vector2d center{Eigen::Vector2d::Zero()};
+  std::vector<int> walls;          // Wall2D ids
+  std::vector<double> distances;   // n·center − d per wall (> 0: the centre is in front)
+  Eigen::Vector2d axis{Eigen::Vector2d::Zero()};  // corridors: the direction along it
+};
+
+/// Rays cast horizontally from a position against the walls facing it; each wall is extended
+/// by `room_gap_margin` at both ends (doorways, unseen corners).
+struct RayFan {
+  std::vector<Eigen::Vector2d> directions;
+  std::vector<int> hit;        // index into the walls, −1: nothing within room_max_range
+  std::vector<double> range;
+};
+
+RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
+                const FrontendConfig& config);
+
+/// A closed room around `position`: (almost) every ray hits a wall that faces it and covers a
+/// noticeable sector (stray hits through doorways do not count). Two opposed pairs of walls
+/// make the paper's four-wall room, centred where the pairs' mid-lines cross; three or more
+/// walls in another arrangement (L-shaped, trapezoid) a polygonal room, centred on the area
+/// centroid of the visibility polygon. nullopt when not closed or out of the size limits.
+std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
+                                        const Eigen::Vector2d& position, const RayFan& fan,
+                                        const FrontendConfig& config);
+
+}  // namespace sgraph
+}  // namespace is_graphs

@@ -1,0 +1,109 @@
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "is_graphs/sgraph/backend_config.h"
+#include "is_graphs/sgraph/frontend_config.h"
+#include "is_graphs/sgraph/keyframe_selector.h"
+#include "is_graphs/sgraph/odometry_buffer.h"
+#include "is_graphs/sgraph/plane_extraction.h"
+#include "is_graphs/sgraph/point_types.h"
+#include "is_graphs/sgraph/sgraph.h"
+#include "is_graphs/sgraph/sgraph_backend.h"
+
+namespace is_graphs {
+namespace sgraph {
+
+/// The S-Graph, built online: the facade the node and the benchmark call.
+///
+///   builder.AddOdometry(t, odom_T_base);        // every odometry message
+///   auto r = builder.AddScan(scan, base_T_sensor);  // every cloud: keyframe or not
+///   builder.Optimize();                         // on a worker thread, after new keyframes
+///   SGraph g = builder.Snapshot();              // what the node publishes
+///
+/// Thread safety: all methods may be called concurrently. Optimize() holds the graph's lock
+/// only to copy the problem and to write the result back, never while Ceres solves, so scans
+/// are not blocked by the optimizer; keyframes added meanwhile are moved by the correction.
+class SGraphBuilder {
+ public:
+  enum class ScanStatus { kSkipped, kNotKeyframe, kKeyframe };
+  struct ScanResult {
+    ScanStatus status{ScanStatus::kSkipped};
+    std::string warning;  // set when the scan was skipped or something was off
+    int keyframe{-1};     // the new keyframe's id
+    int num_segments{0};  // planes seen in the keyframe
+    int num_new_planes{0};
+  };
+  struct OdometryResult {
+    bool accepted{true};
+    bool reset{false};    // time went backwards: the graph was reset
+    std::string warning;
+  };
+
+  SGraphBuilder(const FrontendConfig& frontend, const BackendConfig& backend);
+
+  OdometryResult AddOdometry(double stamp, const Eigen::Isometry3d& odom_T_base);
+  ScanResult AddScan(const Scan& scan, const Eigen::Isometry3d& base_T_sensor);
+  BackendSummary Optimize();
+  /// Drops the whole graph (a restarted bag, a new run).
+  void Reset();
+
+  SGraph Snapshot() const;
+  /// map <- odom, from the latest keyframe's optimized and odometry poses.
+  Eigen::Isometry3d MapToOdom() const;
+  /// The keyframes' clouds in M at their current poses, voxel-filtered.
+  PointList MapCloud(double voxel_size) const;
+  int num_keyframes() const;
+  /// Keyframes added since the last Optimize() started.
+  int pending_keyframes() const;
+
+ private:
+  struct MapPlane {
+    Plane plane;
+    Eigen::Vector3d start{Eigen::Vector3d::Zero()};
+    Eigen::Vector3d end{Eigen::Vector3d::Zero()};
+    bool horizontal{false};
+    Eigen::Matrix3d information{Eigen::Matrix3d::Zero()};  // fused, tangent at the normal
+  };
+
+  void ResetLocked();
+  // Association and map update for one keyframe's segments (in base_link); mutex held.
+  void AddPlaneObservations(int keyframe, const std::vector<PlaneSegment>& segments,
+                            ScanResult& result);
+  void ExtendPlane(MapPlane& mapped, const PlaneSegment& observed_in_map);
+  // Rooms and corridors around a keyframe, and the floor over them; mutex held.
+  void UpdateRooms(int keyframe);
+  void UpdateFloor();
+  double FloorHeight() const;
+  BackendProblem MakeProblem() const;
+  Eigen::Matrix<double, 6, 6> OdometryInformation(const Eigen::Isometry3d& relative) const;
+
+  FrontendConfig frontend_;
+  BackendConfig backend_;
+  mutable std::mutex mutex_;
+  std::mutex optimize_mutex_;  // one optimization at a time
+
+  OdometryBuffer odometry_;
+  KeyframeSelector selector_;
+  double last_odom_stamp_{-1.0};
+  double last_scan_stamp_{-1.0};
+  std::uint64_t generation_{0};  // bumped by Reset(): stale optimizations are discarded
+  unsigned revision_{0};
+  int optimized_keyframes_{0};
+
+  Eigen::Isometry3d map_T_odom_{Eigen::Isometry3d::Identity()};
+  std::vector<Keyframe> keyframes_;
+  std::vector<PointList> clouds_;  // per keyframe, in base_link
+  std::vector<MapPlane> planes_;
+  std::vector<PlaneObservation> observations_;
+  std::vector<BackendRoom> rooms_;
+  std::vector<std::vector<int>> room_keyframes_;
+  BackendFloor floor_;
+};
+
+}  // namespace sgraph
+}  // namespace is_graphs

@@ -1,0 +1,98 @@
+#include <sstream>
+
+#include "is_graphs/sgraph/backend_config.h"
+#include "is_graphs/sgraph/frontend_config.h"
+
+namespace is_graphs {
+namespace sgraph {
+namespace {
+
+// Appends "name must be ... (got v)" when the check fails; returns the first failure only.
+class Checker {
+ public:
+  void Positive(const char* name, double v) {
+    if (error_.empty() && !(v > 0.0)) Fail(name, "must be > 0", v);
+  }
+  void NonNegative(const char* name, double v) {
+    if (error_.empty() && !(v >= 0.0)) Fail(name, "must be >= 0", v);
+  }
+  void Range(const char* name, double v, double lo, double hi) {
+    if (error_.empty() && !(v >= lo && v <= hi)) {
+      std::ostringstream s;
+      s << "must be in [" << lo << ", " << hi << "]";
+      Fail(name, s.str(), v);
+    }
+  }
+  void Less(const char* a, double va, const char* b, double vb) {
+    if (error_.empty() && !(va < vb)) {
+      std::ostringstream s;
+      s << a << " (" << va << ") must be less than " << b << " (" << vb << ")";
+      error_ = s.str();
+    }
+  }
+  std::string error() const { return error_; }
+
+ private:
+  void Fail(const char* name, const std::string& what, double v) {
+    std::ostringstream s;
+    s << name << " " << what << " (got " << v << ")";
+    error_ = s.str();
+  }
+  std::string error_;
+};
+
+}  // namespace
+
+std::string FrontendConfig::Validate() const {
+  Checker c;
+  c.Positive("keyframe_distance", keyframe_distance);
+  c.Range("keyframe_angle_deg", keyframe_angle_deg, 1e-3, 180.0);
+  c.Positive("max_odom_gap", max_odom_gap);
+  c.NonNegative("max_odom_extrapolation", max_odom_extrapolation);
+  c.Positive("time_reset_threshold", time_reset_threshold);
+  c.NonNegative("min_range", min_range);
+  c.Less("min_range", min_range, "max_range", max_range);
+  c.Range("voxel_size", voxel_size, 0.005, 1.0);
+  c.Range("map_voxel_size", map_voxel_size, 0.005, 5.0);
+  c.Range("plane_distance_threshold", plane_distance_threshold, 1e-3, 1.0);
+  c.Range("plane_max_angle_deg", plane_max_angle_deg, 0.1, 45.0);
+  c.Range("ransac_iterations", ransac_iterations, 1, 1e5);
+  c.Range("min_plane_points", min_plane_points, 3, 1e7);
+  c.Range("max_planes", max_planes, 1, 1000);
+  c.Positive("min_segment_length", min_segment_length);
+  c.NonNegative("min_segment_height", min_segment_height);
+  c.Positive("segment_gap", segment_gap);
+  c.Positive("point_sigma", point_sigma);
+  c.Range("max_effective_points", max_effective_points, 3, 1e7);
+  c.Positive("association_chi2", association_chi2);
+  c.Positive("association_min_sigma_d", association_min_sigma_d);
+  c.Positive("association_min_sigma_angle_deg", association_min_sigma_angle_deg);
+  c.NonNegative("association_max_gap", association_max_gap);
+  c.Positive("room_max_range", room_max_range);
+  c.Positive("room_min_width", room_min_width);
+  c.Less("room_min_width", room_min_width, "room_max_width", room_max_width);
+  c.Positive("corridor_max_width", corridor_max_width);
+  c.NonNegative("room_gap_margin", room_gap_margin);
+  c.Range("room_rays", room_rays, 16, 3600);
+  return c.error();
+}
+
+std::string BackendConfig::Validate() const {
+  Checker c;
+  c.Range("max_iterations", max_iterations, 1, 1000);
+  c.Positive("max_solver_time", max_solver_time);
+  c.Range("num_threads", num_threads, 1, 64);
+  c.Positive("odom_sigma_translation", odom_sigma_translation);
+  c.Positive("odom_sigma_rotation", odom_sigma_rotation);
+  c.Positive("odom_sigma_z", odom_sigma_z);
+  c.Positive("odom_sigma_roll_pitch", odom_sigma_roll_pitch);
+  c.Positive("plane_huber", plane_huber);
+  c.Positive("room_cauchy", room_cauchy);
+  c.Positive("room_sigma", room_sigma);
+  c.Positive("corridor_along_sigma", corridor_along_sigma);
+  c.Positive("floor_sigma", floor_sigma);
+  return c.error();
+}
+
+}  // namespace sgraph
+}  // namespace is_graphs

@@ -1,0 +1,161 @@
+#include "is_graphs/sgraph/evaluation.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "is_graphs/sgraph/odometry_buffer.h"
+
+namespace is_graphs {
+namespace sgraph {
+namespace {
+
+bool InsidePolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
+  bool inside = false;
+  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[j];
+    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
+      inside = !inside;
+  }
+  return inside;
+}
+
+int RoomContaining(const agraph::AGraph& building, const Eigen::Vector2d& p) {
+  for (size_t r = 0; r < building.rooms.size(); ++r)
+    if (building.rooms[r].polygon.size() >= 3 && InsidePolygon(building.rooms[r].polygon, p))
+      return static_cast<int>(r);
+  return -1;
+}
+
+double Rmse(const std::vector<Eigen::Vector3d>& est, const std::vector<Eigen::Vector3d>& gt,
+            const Eigen::Isometry3d& t) {
+  double sum = 0.0;
+  for (size_t i = 0; i < est.size(); ++i) sum += (t * est[i] - gt[i]).squaredNorm();
+  return est.empty() ? 0.0 : std::sqrt(sum / est.size());
+}
+
+}  // namespace
+
+std::optional<Eigen::Isometry3d> TruthAt(const std::vector<StampedPose>& truth, double stamp) {
+  auto it = std::lower_bound(truth.begin(), truth.end(), stamp,
+                             [](const StampedPose& s, double t) { return s.stamp < t; });
+  if (it == truth.end() || it == truth.begin()) {
+    if (it != truth.end() && std::abs(it->stamp - stamp) < 1e-6) return it->pose;
+    return std::nullopt;
+  }
+  const StampedPose& hi = *it;
+  const StampedPose& lo = *(it - 1);
+  if (hi.stamp - lo.stamp > 0.2) return std::nullopt;
+  return Interpolate(lo.pose, hi.pose, (stamp - lo.stamp) / std::max(hi.stamp - lo.stamp, 1e-9));
+}
+
+Eigen::Isometry3d AlignPositions(const std::vector<Eigen::Vector3d>& estimate,
+                                 const std::vector<Eigen::Vector3d>& truth) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  if (estimate.size() < 3 || estimate.size() != truth.size()) {
+    if (!estimate.empty() && estimate.size() == truth.size())
+      t.translation() = truth[0] - estimate[0];
+    return t;
+  }
+  Eigen::Matrix3Xd src(3, estimate.size()), dst(3, truth.size());
+  for (size_t i = 0; i < estimate.size(); ++i) {
+    src.col(i) = estimate[i];
+    dst.col(i) = truth[i];
+  }
+  t.matrix() = Eigen::umeyama(src, dst, false);
+  return t;
+}
+
+TrajectoryError EvaluateTrajectory(const SGraph& graph, const std::vector<StampedPose>& truth) {
+  TrajectoryError e;
+  std::vector<Eigen::Vector3d> est, odom, gt;
+  for (const auto& k : graph.keyframes) {
+    const auto t = TruthAt(truth, k.stamp);
+    if (!t) continue;
+    est.push_back(k.pose.translation());
+    odom.push_back(k.odom_pose.translation());
+    gt.push_back(t->translation());
+  }
+  e.keyframes = static_cast<int>(est.size());
+  e.bim_T_map = AlignPositions(est, gt);
+  e.sgraph_rmse = Rmse(est, gt, e.bim_T_map);
+  e.odom_rmse = Rmse(odom, gt, AlignPositions(odom, gt));
+  return e;
+}
+
+std::vector<PlaneError> EvaluatePlanes(const SGraph& graph, const agraph::AGraph& building,
+                                       const Eigen::Isometry3d& bim_T_map, int min_points) {
+  std::vector<PlaneError> out;
+  for (const auto& p : graph.planes) {
+    if (p.orientation == geometry::Orientation::kHorizontal || p.num_points < min_points) continue;
+    const geometry::Plane plane = p.plane.Transformed(bim_T_map);
+    const double z = 0.5 * (p.z_min + p.z_max);
+    const Eigen::Vector3d a = bim_T_map * Eigen::Vector3d(p.start.x(), p.start.y(), z);
+    const Eigen::Vector3d b = bim_T_map * Eigen::Vector3d(p.end.x(), p.end.y(), z);
+    PlaneError best;
+    best.plane = p.id;
+    best.distance = 1e9;
+    for (const auto& s : building.surfaces) {
+      const double cosine = plane.normal.dot(s.plane.normal);
+      if (cosine < std::cos(10.0 * M_PI / 180.0)) continue;
+      const double distance =
+          std::max(std::abs(s.plane.SignedDistance(a)), std::abs(s.plane.SignedDistance(b)));
+      if (distance > 0.3 || distance >= best.distance) continue;
+      // The segment's middle must lie along the surface's extent (±0.5 m).
+      const Eigen::Vector3d tangent = s.Tangent();
+      const double m = tangent.dot(0.5 * (a + b));
+      const double s0 = tangent.head<2>().dot(s.start), s1 = tangent.head<2>().dot(s.end);
+      if (m < std::min(s0, s1) - 0.5 || m > std::max(s0, s1) + 0.5) continue;
+      best.surface = s.id;
+      best.distance = distance;
+      best.angle_deg = std::acos(std::min(1.0, cosine)) * 180.0 / M_PI;
+    }
+    if (best.surface < 0) best.distance = 0.0;
+    out.push_back(best);
+  }
+  return out;
+}
+
+RoomEvaluation EvaluateRooms(const SGraph& graph, const agraph::AGraph& building,
+                             const std::vector<StampedPose>& truth,
+                             const Eigen::Isometry3d& bim_T_map) {
+  RoomEvaluation e;
+  std::map<int, int> keyframe_room;  // keyframe id -> A-Graph room by ground truth
+  std::map<int, int> keyframes_in;   // A-Graph room -> keyframe count
+  for (const auto& k : graph.keyframes) {
+    const auto t = TruthAt(truth, k.stamp);
+    if (!t) continue;
+    const int r = RoomContaining(building, t->translation().head<2>());
+    keyframe_room[k.id] = r;
+    if (r >= 0) ++keyframes_in[r];
+  }
+  std::map<int, bool> found;
+  for (const auto& room : graph.rooms) {
+    ++e.detected;
+    const Eigen::Vector2d c = (bim_T_map * room.center).head<2>();
+    const int at = RoomContaining(building, c);
+    std::map<int, int> votes;
+    for (int k : room.keyframes)
+      if (keyframe_room.count(k)) ++votes[keyframe_room[k]];
+    int majority = -1, most = 0;
+    for (const auto& [r, n] : votes)
+      if (n > most) majority = r, most = n;
+    if (at >= 0 && at == majority) {
+      found[at] = true;
+    } else {
+      ++e.false_rooms;
+    }
+  }
+  for (const auto& [r, n] : keyframes_in) {
+    if (n < 2) continue;
+    ++e.walked;
+    if (found.count(r)) ++e.found;
+  }
+  return e;
+}
+
+}  // namespace sgraph
+}  // namespace is_graphs

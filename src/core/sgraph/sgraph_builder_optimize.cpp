@@ -1,0 +1,126 @@
+// SGraphBuilder: the optimization off the scan path, and what is read out of the graph.
+#include "is_graphs/sgraph/cloud_filter.h"
+#include "is_graphs/sgraph/floor_node.h"
+#include "is_graphs/sgraph/sgraph_builder.h"
+
+namespace is_graphs {
+namespace sgraph {
+
+BackendProblem SGraphBuilder::MakeProblem() const {
+  BackendProblem problem;
+  problem.keyframes = keyframes_;
+  for (const auto& p : planes_) problem.planes.push_back(p.plane);
+  problem.observations = observations_;
+  problem.rooms = rooms_;
+  problem.floor = floor_;
+  return problem;
+}
+
+BackendSummary SGraphBuilder::Optimize() {
+  std::lock_guard<std::mutex> one_at_a_time(optimize_mutex_);
+  BackendProblem problem;
+  std::uint64_t generation;
+  size_t num_keyframes, num_planes, num_rooms;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    problem = MakeProblem();
+    generation = generation_;
+    num_keyframes = keyframes_.size();
+    num_planes = planes_.size();
+    num_rooms = rooms_.size();
+    optimized_keyframes_ = static_cast<int>(num_keyframes);
+  }
+  if (num_keyframes == 0) {
+    BackendSummary empty;
+    empty.message = "no keyframes";
+    return empty;
+  }
+  const BackendSummary summary = OptimizeSGraph(problem, backend_);
+
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (generation != generation_ || !summary.usable) return summary;
+  // What was added while Ceres ran moves with the newest optimized keyframe.
+  const Eigen::Isometry3d delta =
+      problem.keyframes.back().pose * keyframes_[num_keyframes - 1].pose.inverse();
+  for (size_t i = 0; i < keyframes_.size(); ++i)
+    keyframes_[i].pose = i < num_keyframes ? problem.keyframes[i].pose : delta * keyframes_[i].pose;
+  for (size_t i = 0; i < planes_.size(); ++i) {
+    MapPlane& p = planes_[i];
+    if (i < num_planes) {
+      p.plane.plane = problem.planes[i].plane;
+    } else {
+      p.plane.plane = p.plane.plane.Transformed(delta);
+      p.start = delta * p.start;
+      p.end = delta * p.end;
+    }
+    p.start = p.plane.plane.Project(p.start);
+    p.end = p.plane.plane.Project(p.end);
+    p.plane.start = p.start.head<2>();
+    p.plane.end = p.end.head<2>();
+    p.plane.orientation = geometry::ClassifyOrientation(p.plane.plane.normal);
+  }
+  for (size_t i = 0; i < num_rooms && i < rooms_.size(); ++i) {
+    // Keep a corridor upgraded meanwhile as it is; move centres of unchanged rooms.
+    if (rooms_[i].type == problem.rooms[i].type) rooms_[i].center = problem.rooms[i].center;
+  }
+  if (floor_.present && problem.floor.present) floor_.center = problem.floor.center;
+  map_T_odom_ = keyframes_.back().pose * keyframes_.back().odom_pose.inverse();
+  ++revision_;
+  return summary;
+}
+
+SGraph SGraphBuilder::Snapshot() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  SGraph graph;
+  graph.revision = revision_;
+  graph.stamp = keyframes_.empty() ? 0.0 : keyframes_.back().stamp;
+  graph.keyframes = keyframes_;
+  for (const auto& p : planes_) graph.planes.push_back(p.plane);
+  graph.observations = observations_;
+  const double height = FloorHeight();
+  for (size_t i = 0; i < rooms_.size(); ++i) {
+    const BackendRoom& r = rooms_[i];
+    Room room;
+    room.id = r.id;
+    room.type = r.type;
+    room.center = Eigen::Vector3d(r.center.x(), r.center.y(), height);
+    room.planes = r.planes;
+    room.keyframes = room_keyframes_[i];
+    room.information = Eigen::Matrix3d::Identity() / (backend_.room_sigma * backend_.room_sigma);
+    graph.rooms.push_back(room);
+  }
+  if (floor_.present) graph.floors.push_back(MakeFloor(graph.rooms, height));
+  if (floor_.present && !graph.floors.empty())
+    graph.floors.back().center.head<2>() = floor_.center;
+  return graph;
+}
+
+Eigen::Isometry3d SGraphBuilder::MapToOdom() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return map_T_odom_;
+}
+
+PointList SGraphBuilder::MapCloud(double voxel_size) const {
+  PointList all;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (size_t i = 0; i < clouds_.size(); ++i) {
+      const Eigen::Isometry3f pose = keyframes_[i].pose.cast<float>();
+      for (const auto& p : clouds_[i]) all.push_back(pose * p);
+    }
+  }
+  return VoxelFilter(all, voxel_size);
+}
+
+int SGraphBuilder::num_keyframes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(keyframes_.size());
+}
+
+int SGraphBuilder::pending_keyframes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(keyframes_.size()) - optimized_keyframes_;
+}
+
+}  // namespace sgraph
+}  // namespace is_graphs

@@ -1,0 +1,91 @@
+// SGraphBuilder: rooms, corridors and the floor over them.
+#include <algorithm>
+#include <cmath>
+
+#include "is_graphs/sgraph/corridor_detection.h"
+#include "is_graphs/sgraph/room_detection.h"
+#include "is_graphs/sgraph/sgraph_builder.h"
+
+namespace is_graphs {
+namespace sgraph {
+
+double SGraphBuilder::FloorHeight() const {
+  for (const auto& p : planes_)
+    if (p.horizontal && p.plane.plane.normal.z() > 0.9)
+      return p.plane.plane.d / p.plane.plane.normal.z();
+  return keyframes_.empty() ? 0.0 : keyframes_.front().pose.translation().z() - 0.5;
+}
+
+void SGraphBuilder::UpdateRooms(int keyframe) {
+  const Eigen::Isometry3d& pose = keyframes_[keyframe].pose;
+  const double z = pose.translation().z();
+  std::vector<Wall2D> walls;
+  for (const auto& p : planes_) {
+    if (p.horizontal) continue;
+    const Eigen::Vector3d& n = p.plane.plane.normal;
+    const double horizontal = n.head<2>().norm();
+    if (horizontal < 0.9) continue;
+    Wall2D w;
+    w.id = p.plane.id;
+    w.normal = n.head<2>() / horizontal;
+    w.d = (p.plane.plane.d - n.z() * z) / horizontal;
+    w.start = p.start.head<2>();
+    w.end = p.end.head<2>();
+    walls.push_back(w);
+  }
+  const Eigen::Vector2d position = pose.translation().head<2>();
+  const RayFan fan = CastRays(walls, position, frontend_);
+  std::optional<RoomCandidate> candidate = DetectRoom(walls, position, fan, frontend_);
+  if (!candidate) candidate = DetectCorridor(walls, position, fan, frontend_);
+  if (!candidate) return;
+
+  // The same room seen again: shares two walls and lies near; a corridor closed later becomes
+  // a room.
+  for (size_t r = 0; r < rooms_.size(); ++r) {
+    BackendRoom& room = rooms_[r];
+    int shared = 0;
+    for (int id : candidate->walls)
+      shared += std::count(room.planes.begin(), room.planes.end(), id) > 0 ? 1 : 0;
+    const bool near = (room.center - candidate->center).norm() < 1.5;
+    const bool same = shared >= 2 && (near || room.type != candidate->type);
+    if (!same) continue;
+    if (room.type == RoomType::kCorridor && candidate->type == RoomType::kRoom) {
+      room.type = RoomType::kRoom;
+      room.center = candidate->center;
+      room.initial_center = candidate->center;
+      room.planes = candidate->walls;
+      room.distances = candidate->distances;
+    }
+    room_keyframes_[r].push_back(keyframe);
+    return;
+  }
+  BackendRoom room;
+  room.id = static_cast<int>(rooms_.size());
+  room.type = candidate->type;
+  room.center = candidate->center;
+  room.initial_center = candidate->center;
+  room.z = FloorHeight();
+  room.planes = candidate->walls;
+  room.distances = candidate->distances;
+  room.axis = candidate->axis;
+  rooms_.push_back(room);
+  room_keyframes_.push_back({keyframe});
+  UpdateFloor();
+}
+
+void SGraphBuilder::UpdateFloor() {
+  if (rooms_.empty()) return;
+  floor_.present = true;
+  floor_.center = Eigen::Vector2d::Zero();
+  floor_.rooms.clear();
+  floor_.offsets.clear();
+  for (const auto& r : rooms_) floor_.center += r.center;
+  floor_.center /= static_cast<double>(rooms_.size());
+  for (const auto& r : rooms_) {
+    floor_.rooms.push_back(r.id);
+    floor_.offsets.push_back(r.center - floor_.center);
+  }
+}
+
+}  // namespace sgraph
+}  // namespace is_graphs

@@ -1,0 +1,129 @@
+#include "sgraph_markers.h"
+
+#include <map>
+
+#include "point_conversions.h"
+
+namespace is_graphs {
+namespace ros_markers {
+namespace {
+
+using visualization_msgs::Marker;
+
+Marker MakeMarker(const SGraphMarkerStyle& style, const std::string& ns, int type, double scale,
+                  float r, float g, float b, float a = 1.0f) {
+  Marker m;
+  m.header.frame_id = style.frame_id;
+  m.ns = ns;
+  m.id = 0;
+  m.type = type;
+  m.action = Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = scale;
+  m.color.r = r;
+  m.color.g = g;
+  m.color.b = b;
+  m.color.a = a;
+  return m;
+}
+
+std_msgs::ColorRGBA PlaneColor(geometry::Orientation o) {
+  std_msgs::ColorRGBA c;
+  c.a = 0.5f;
+  switch (o) {
+    case geometry::Orientation::kX: c.r = 0.9f, c.g = 0.3f, c.b = 0.3f; break;
+    case geometry::Orientation::kY: c.r = 0.3f, c.g = 0.5f, c.b = 0.95f; break;
+    case geometry::Orientation::kHorizontal: c.r = 0.6f, c.g = 0.6f, c.b = 0.6f, c.a = 0.2f; break;
+    default: c.r = 0.95f, c.g = 0.75f, c.b = 0.2f; break;
+  }
+  return c;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
+                                                   const SGraphMarkerStyle& style) {
+  using ros_conversions::ToPoint;
+  const double top = [&] {
+    double z = 0.0;
+    for (const auto& k : graph.keyframes) z = std::max(z, k.pose.translation().z());
+    for (const auto& p : graph.planes) z = std::max(z, p.z_max);
+    return z;
+  }();
+  const double plane_layer = top + style.layer_spacing;
+  const double room_layer = plane_layer + style.layer_spacing;
+  const double floor_layer = room_layer + style.layer_spacing;
+
+  Marker keyframes = MakeMarker(style, "keyframes", Marker::SPHERE_LIST, style.node_scale, 0.2f, 0.9f, 0.3f);
+  Marker odom = MakeMarker(style, "odometry_edges", Marker::LINE_STRIP, style.line_width, 0.2f, 0.9f, 0.3f);
+  std::map<int, Eigen::Vector3d> keyframe_at;
+  for (const auto& k : graph.keyframes) {
+    keyframe_at[k.id] = k.pose.translation();
+    keyframes.points.push_back(ToPoint(k.pose.translation()));
+    odom.points.push_back(ToPoint(k.pose.translation()));
+  }
+  Marker planes = MakeMarker(style, "planes", Marker::TRIANGLE_LIST, 1.0, 1, 1, 1);
+  Marker plane_nodes = MakeMarker(style, "plane_nodes", Marker::SPHERE_LIST, style.node_scale, 0.95f, 0.6f, 0.1f);
+  std::map<int, Eigen::Vector3d> plane_node_at;
+  for (const auto& p : graph.planes) {
+    if (p.orientation == geometry::Orientation::kHorizontal) continue;
+    const Eigen::Vector3d a(p.start.x(), p.start.y(), p.z_min), b(p.end.x(), p.end.y(), p.z_min);
+    const Eigen::Vector3d up(0, 0, std::max(p.z_max - p.z_min, 0.05));
+    const auto c = PlaneColor(p.orientation);
+    for (const Eigen::Vector3d& v : {a, b, Eigen::Vector3d(b + up), a, Eigen::Vector3d(b + up), Eigen::Vector3d(a + up)}) {
+      planes.points.push_back(ToPoint(v));
+      planes.colors.push_back(c);
+    }
+    Eigen::Vector3d node = 0.5 * (a + b);
+    node.z() = plane_layer;
+    plane_node_at[p.id] = node;
+    plane_nodes.points.push_back(ToPoint(node));
+  }
+  Marker observations = MakeMarker(style, "observation_edges", Marker::LINE_LIST, style.line_width * 0.5, 0.6f, 0.6f, 0.6f, 0.4f);
+  for (const auto& o : graph.observations) {
+    auto k = keyframe_at.find(o.keyframe);
+    auto p = plane_node_at.find(o.plane);
+    if (k == keyframe_at.end() || p == plane_node_at.end()) continue;
+    observations.points.push_back(ToPoint(k->second));
+    observations.points.push_back(ToPoint(p->second));
+  }
+  Marker rooms = MakeMarker(style, "rooms", Marker::SPHERE_LIST, 2.0 * style.node_scale, 0.8f, 0.2f, 0.9f);
+  Marker corridors = MakeMarker(style, "corridors", Marker::SPHERE_LIST, 2.0 * style.node_scale, 0.2f, 0.8f, 0.9f);
+  Marker room_edges = MakeMarker(style, "room_edges", Marker::LINE_LIST, style.line_width, 0.8f, 0.2f, 0.9f, 0.7f);
+  std::map<int, Eigen::Vector3d> room_at;
+  for (const auto& r : graph.rooms) {
+    const Eigen::Vector3d c(r.center.x(), r.center.y(), room_layer);
+    room_at[r.id] = c;
+    (r.type == sgraph::RoomType::kCorridor ? corridors : rooms).points.push_back(ToPoint(c));
+    for (int pid : r.planes) {
+      auto p = plane_node_at.find(pid);
+      if (p == plane_node_at.end()) continue;
+      room_edges.points.push_back(ToPoint(c));
+      room_edges.points.push_back(ToPoint(p->second));
+    }
+  }
+  Marker floor = MakeMarker(style, "floor", Marker::SPHERE_LIST, 3.0 * style.node_scale, 0.9f, 0.9f, 0.9f);
+  Marker floor_edges = MakeMarker(style, "floor_edges", Marker::LINE_LIST, style.line_width, 0.9f, 0.9f, 0.9f, 0.7f);
+  for (const auto& f : graph.floors) {
+    const Eigen::Vector3d c(f.center.x(), f.center.y(), floor_layer);
+    floor.points.push_back(ToPoint(c));
+    for (int rid : f.rooms) {
+      auto r = room_at.find(rid);
+      if (r == room_at.end()) continue;
+      floor_edges.points.push_back(ToPoint(c));
+      floor_edges.points.push_back(ToPoint(r->second));
+    }
+  }
+  visualization_msgs::MarkerArray out;
+  for (Marker* m : {&keyframes, &odom, &planes, &plane_nodes, &observations, &rooms, &corridors,
+                    &room_edges, &floor, &floor_edges}) {
+    // Empty lists are published as DELETE so stale markers disappear after a reset.
+    if (m->points.empty() || (m->type == Marker::LINE_STRIP && m->points.size() < 2))
+      m->action = Marker::DELETE;
+    out.markers.push_back(*m);
+  }
+  return out;
+}
+
+}  // namespace ros_markers
+}  // namespace is_graphs

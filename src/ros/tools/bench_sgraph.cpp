@@ -1,0 +1,181 @@
+// bench_sgraph: feeds the S-Graph core from a bag without ROS transport (rosbag C++ API) and
+// prints per-scan latency, optimization time against keyframes, the real-time factor and the
+// peak RSS; with --building, also the quality against the bag's ground truth and the BIM.
+//
+//   bench_sgraph BAG [--building FILE.ifc|.agraph.json] [--storey S] [--keyframe-distance M]
+//                    [--min-plane-points N]
+//
+// Optimizations run synchronously after each keyframe here (the node runs them on a worker
+// thread): scan latency excludes them, the real-time factor includes them.
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include "../pose_conversions.h"
+#include "../velodyne_conversions.h"
+#include "is_graphs/agraph/agraph_queries.h"
+#include "is_graphs/agraph/ifc_conversion.h"
+#include "is_graphs/sgraph/evaluation.h"
+#include "is_graphs/sgraph/sgraph_builder.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using namespace is_graphs;
+
+double Ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
+
+double Percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
+}
+
+long PeakRssKb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
+}
+
+int Usage() {
+  std::cerr << "usage: bench_sgraph BAG [--building FILE] [--storey S] [--keyframe-distance M]"
+               " [--min-plane-points N]\n";
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return Usage();
+  std::string bag_path = argv[1], building_path, storey;
+  sgraph::FrontendConfig frontend;
+  sgraph::BackendConfig backend;
+  int min_plane_points_eval = 200;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) return Usage();
+    if (a == "--building") building_path = argv[++i];
+    else if (a == "--storey") storey = argv[++i];
+    else if (a == "--keyframe-distance") frontend.keyframe_distance = std::stod(argv[++i]);
+    else if (a == "--min-plane-points") min_plane_points_eval = std::stoi(argv[++i]);
+    else return Usage();
+  }
+  if (const auto e = frontend.Validate(); !e.empty()) {
+    std::cerr << "bench_sgraph: " << e << "\n";
+    return 2;
+  }
+  rosbag::Bag bag;
+  try {
+    bag.open(bag_path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    std::cerr << "bench_sgraph: " << bag_path << ": " << e.what() << "\n";
+    return 2;
+  }
+  // base_link <- velodyne from tf_static.
+  Eigen::Isometry3d base_T_sensor = Eigen::Isometry3d::Identity();
+  for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(std::vector<std::string>{"tf_static", "/tf_static"}))) {
+    if (auto tf = m.instantiate<tf2_msgs::TFMessage>())
+      for (const auto& t : tf->transforms)
+        if (t.child_frame_id == "velodyne") base_T_sensor = tf2::transformToEigen(t);
+  }
+  sgraph::SGraphBuilder builder(frontend, backend);
+  std::vector<double> scan_ms, keyframe_ms, optimize_ms;
+  std::vector<std::pair<int, double>> optimize_at;
+  std::vector<sgraph::StampedPose> truth;
+  double first = -1.0, last = 0.0;
+  const auto start = Clock::now();
+  Clock::duration processing{0};
+  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"velodyne_points", "odom", "ground_truth/pose",
+                                             "/velodyne_points", "/odom", "/ground_truth/pose"}));
+  for (const auto& m : view) {
+    const double t = m.getTime().toSec();
+    if (first < 0.0) first = t;
+    last = t;
+    if (auto odom = m.instantiate<nav_msgs::Odometry>()) {
+      const auto t0 = Clock::now();
+      builder.AddOdometry(odom->header.stamp.toSec(), ros_conversions::FromPose(odom->pose.pose));
+      processing += Clock::now() - t0;
+    } else if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) {
+      const auto t0 = Clock::now();
+      const auto scan = ros_conversions::FromVelodyneMsg(*cloud);
+      if (!scan.ok()) continue;
+      const auto r = builder.AddScan(scan.value(), base_T_sensor);
+      const auto t1 = Clock::now();
+      scan_ms.push_back(Ms(t1 - t0));
+      if (r.status == sgraph::SGraphBuilder::ScanStatus::kKeyframe) {
+        keyframe_ms.push_back(scan_ms.back());
+        const auto summary = builder.Optimize();
+        const double ms = Ms(Clock::now() - t1);
+        optimize_ms.push_back(ms);
+        optimize_at.emplace_back(summary.num_keyframes, ms);
+      }
+      processing += Clock::now() - t0;
+    } else if (auto pose = m.instantiate<geometry_msgs::PoseStamped>()) {
+      truth.push_back({pose->header.stamp.toSec(), ros_conversions::FromPose(pose->pose)});
+    }
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  const double bag_seconds = last - first;
+  const sgraph::SGraph graph = builder.Snapshot();
+  std::printf("bag: %s (%.1f s)\n", bag_path.c_str(), bag_seconds);
+  std::printf("scans: %zu, keyframes: %zu, planes: %zu, observations: %zu, rooms: %zu\n",
+              scan_ms.size(), graph.keyframes.size(), graph.planes.size(),
+              graph.observations.size(), graph.rooms.size());
+  std::printf("per-scan latency [ms]: median %.2f, p99 %.2f, max %.2f (keyframe scans: median %.2f, p99 %.2f)\n",
+              Percentile(scan_ms, 0.5), Percentile(scan_ms, 0.99), Percentile(scan_ms, 1.0),
+              Percentile(keyframe_ms, 0.5), Percentile(keyframe_ms, 0.99));
+  std::printf("optimization [ms]: median %.1f, max %.1f; by keyframes:", Percentile(optimize_ms, 0.5),
+              Percentile(optimize_ms, 1.0));
+  for (size_t i = 0; i < optimize_at.size(); ++i)
+    if (i + 1 == optimize_at.size() || (i + 1) % std::max<size_t>(1, optimize_at.size() / 6) == 0)
+      std::printf(" %d:%.1f", optimize_at[i].first, optimize_at[i].second);
+  std::printf("\nreal-time factor: %.1fx (processing only %.1fx), wall %.1f s\n",
+              bag_seconds / wall, bag_seconds / std::chrono::duration<double>(processing).count(), wall);
+  std::printf("peak RSS: %.1f MiB\n", PeakRssKb() / 1024.0);
+
+  if (building_path.empty()) return 0;
+  auto loaded = agraph::LoadBim(building_path);
+  if (!loaded.ok()) {
+    std::cerr << "bench_sgraph: " << loaded.error() << "\n";
+    return 1;
+  }
+  agraph::AGraph building = loaded.value();
+  if (!storey.empty()) {
+    auto s = agraph::SelectStorey(building, storey);
+    if (s.ok()) building = s.value();
+  }
+  const auto traj = sgraph::EvaluateTrajectory(graph, truth);
+  std::printf("trajectory APE RMSE (aligned, %d keyframes): S-Graph %.3f m, odometry %.3f m\n",
+              traj.keyframes, traj.sgraph_rmse, traj.odom_rmse);
+  const auto planes = sgraph::EvaluatePlanes(graph, building, traj.bim_T_map, min_plane_points_eval);
+  int matched = 0, good = 0;
+  std::vector<double> dist, ang;
+  for (const auto& p : planes) {
+    if (p.surface < 0) continue;
+    ++matched;
+    dist.push_back(p.distance);
+    ang.push_back(p.angle_deg);
+    if (p.distance <= 0.05 && p.angle_deg <= 1.0) ++good;
+  }
+  std::printf("wall planes (>= %d points): %zu, on a BIM surface: %d, within 5 cm and 1 deg: %d; "
+              "distance median %.3f max %.3f m, angle median %.2f max %.2f deg\n",
+              min_plane_points_eval, planes.size(), matched, good, Percentile(dist, 0.5),
+              Percentile(dist, 1.0), Percentile(ang, 0.5), Percentile(ang, 1.0));
+  const auto rooms = sgraph::EvaluateRooms(graph, building, truth, traj.bim_T_map);
+  std::printf("rooms: walked through %d, found %d, detected %d, false %d\n", rooms.walked,
+              rooms.found, rooms.detected, rooms.false_rooms);
+  return 0;
+}

@@ -1,0 +1,125 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "is_graphs/sgraph/corridor_detection.h"
+#include "is_graphs/sgraph/floor_node.h"
+#include "is_graphs/sgraph/room_detection.h"
+
+namespace is_graphs {
+namespace sgraph {
+namespace {
+
+using Eigen::Vector2d;
+
+// The walls of a counter-clockwise polygon, normals into it.
+std::vector<Wall2D> PolygonWalls(const std::vector<Vector2d>& corners, int first_id = 0) {
+  std::vector<Wall2D> walls;
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const Vector2d a = corners[i];
+    const Vector2d b = corners[(i + 1) % corners.size()];
+    const Vector2d dir = (b - a).normalized();
+    Wall2D w;
+    w.id = first_id + static_cast<int>(i);
+    w.normal = Vector2d(-dir.y(), dir.x());  // left of a -> b: inside a CCW polygon
+    w.d = w.normal.dot(a);
+    w.start = a;
+    w.end = b;
+    walls.push_back(w);
+  }
+  return walls;
+}
+
+std::optional<RoomCandidate> Detect(const std::vector<Wall2D>& walls, const Vector2d& at) {
+  FrontendConfig config;
+  const RayFan fan = CastRays(walls, at, config);
+  auto room = DetectRoom(walls, at, fan, config);
+  return room ? room : DetectCorridor(walls, at, fan, config);
+}
+
+TEST(RoomDetection, RectangularRoomIsAFourWallRoomAtItsCentre) {
+  const auto walls = PolygonWalls({{0, 0}, {6, 0}, {6, 4}, {0, 4}});
+  const auto room = Detect(walls, Vector2d(1.0, 3.0));  // off-centre keyframe
+  ASSERT_TRUE(room);
+  EXPECT_EQ(room->type, RoomType::kRoom);
+  EXPECT_TRUE(room->rectangular);
+  EXPECT_LT((room->center - Vector2d(3, 2)).norm(), 1e-9);
+  ASSERT_EQ(room->walls.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    const int id = room->walls[i];
+    EXPECT_NEAR(room->distances[i], id % 2 == 0 ? 2.0 : 3.0, 1e-9) << "wall " << id;
+  }
+}
+
+TEST(RoomDetection, RotatedRoomWithADoorway) {
+  // 5 x 4 m rotated 30°, a 0.9 m doorway in one wall (two coplanar segments, one plane each).
+  const Eigen::Rotation2Dd r(M_PI / 6);
+  std::vector<Vector2d> c = {r * Vector2d(0, 0), r * Vector2d(5, 0), r * Vector2d(5, 4),
+                             r * Vector2d(0, 4)};
+  auto walls = PolygonWalls(c);
+  Wall2D second = walls[0];
+  second.id = 10;
+  walls[0].end = r * Vector2d(2.0, 0);
+  second.start = r * Vector2d(2.9, 0);
+  walls.push_back(second);
+  const auto room = Detect(walls, r * Vector2d(4, 1));
+  ASSERT_TRUE(room);
+  EXPECT_EQ(room->type, RoomType::kRoom);
+  EXPECT_LT((room->center - r * Vector2d(2.5, 2)).norm(), 0.1);
+}
+
+TEST(RoomDetection, CorridorIsTwoOpposedWalls) {
+  // 2 m wide, 20 m long, open ends beyond the range of the fan.
+  FrontendConfig config;
+  std::vector<Wall2D> walls = PolygonWalls({{-10, 0}, {10, 0}, {10, 2}, {-10, 2}});
+  walls.erase(walls.begin() + 3);
+  walls.erase(walls.begin() + 1);
+  const auto corridor = Detect(walls, Vector2d(3, 0.7));
+  ASSERT_TRUE(corridor);
+  EXPECT_EQ(corridor->type, RoomType::kCorridor);
+  EXPECT_NEAR(corridor->center.y(), 1.0, 1e-9);
+  EXPECT_NEAR(corridor->center.x(), 0.0, 1e-9);
+  EXPECT_NEAR(std::abs(corridor->axis.x()), 1.0, 1e-9);
+  EXPECT_NEAR(corridor->distances[0], 1.0, 1e-9);
+}
+
+TEST(RoomDetection, LShapedRoomIsAPolygonalRoom) {
+  const std::vector<Vector2d> corners = {{0, 0}, {6, 0}, {6, 3}, {3, 3}, {3, 6}, {0, 6}};
+  const auto room = Detect(PolygonWalls(corners), Vector2d(1.5, 1.5));
+  ASSERT_TRUE(room);
+  EXPECT_EQ(room->type, RoomType::kRoom);
+  EXPECT_FALSE(room->rectangular);
+  EXPECT_EQ(room->walls.size(), 6u);
+  // The L's area centroid is (2.5, 2.5); seen from one corner part of it is hidden, so the
+  // visibility polygon's centroid lies nearby, inside the room.
+  EXPECT_LT((room->center - Vector2d(2.5, 2.5)).norm(), 0.8);
+  for (double d : room->distances) EXPECT_GT(d, 0.0);
+}
+
+TEST(RoomDetection, RoomSeenOnlyInPartIsNoRoom) {
+  // Two adjacent walls of a room: no closure, no opposed pair.
+  auto walls = PolygonWalls({{0, 0}, {6, 0}, {6, 4}, {0, 4}});
+  walls.resize(2);
+  EXPECT_FALSE(Detect(walls, Vector2d(3, 2)));
+  // Three walls: still open on one side, and the one pair is too wide for a corridor.
+  walls = PolygonWalls({{0, 0}, {6, 0}, {6, 4}, {0, 4}});
+  walls.resize(3);
+  EXPECT_FALSE(Detect(walls, Vector2d(3, 2)));
+}
+
+TEST(RoomDetection, NoWallsNoRoom) { EXPECT_FALSE(Detect({}, Vector2d(0, 0))); }
+
+TEST(FloorNode, CentreIsTheMeanOfTheRooms) {
+  Room a, b;
+  a.id = 3;
+  a.center = Eigen::Vector3d(0, 0, 0);
+  b.id = 5;
+  b.center = Eigen::Vector3d(4, 2, 0);
+  const Floor f = MakeFloor({a, b}, -0.5);
+  EXPECT_LT((f.center - Eigen::Vector3d(2, 1, -0.5)).norm(), 1e-12);
+  EXPECT_EQ(f.rooms, (std::vector<int>{3, 5}));
+}
+
+}  // namespace
+}  // namespace sgraph
+}  // namespace is_graphs
