@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo test bench-conversion buildings bags bags-short bench-bags clean format
+.PHONY: all setup build demo test bench-conversion buildings bags bags-short bench-bags bench-sgraph bench-matching clean format
 
 all: build
 
@@ -39,6 +39,14 @@ bags-short: build
 # Bag generation time, real-time factor, size and peak memory: SCENARIO=bags/X.yaml
 bench-bags: build
 	@bash scripts/bench_bags.sh $(SCENARIO)
+
+# S-Graph quality and speed on the full-length scenario bags present (make bags first).
+bench-sgraph: build
+	@bash scripts/bench_sgraph.sh '*' '!*_short'
+
+# Matching time for S-Graphs of 3, 10, 20 rooms against A-Graphs of 10, 60, 200 rooms.
+bench-matching: build
+	@.ws/devel/lib/is_graphs/bench_matching
 
 format:
 	@clang-format -i $$(git ls-files '*.h' '*.cpp')

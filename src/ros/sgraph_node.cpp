@@ -81,6 +81,8 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "point_sigma", f.point_sigma);
   Read(pnh, "max_effective_points", f.max_effective_points);
   Read(pnh, "extract_floor", f.extract_floor);
+  Read(pnh, "floor_max_covered", f.floor_max_covered);
+  Read(pnh, "floor_cover_height", f.floor_cover_height);
   Read(pnh, "association_chi2", f.association_chi2);
   Read(pnh, "association_min_sigma_d", f.association_min_sigma_d);
   Read(pnh, "association_min_sigma_angle_deg", f.association_min_sigma_angle_deg);

@@ -25,11 +25,23 @@ std::optional<Eigen::Isometry3d> TruthAt(const std::vector<StampedPose>& truth, 
 Eigen::Isometry3d AlignPositions(const std::vector<Eigen::Vector3d>& estimate,
                                  const std::vector<Eigen::Vector3d>& truth);
 
+/// The transform T = (yaw about z, translation) minimizing Σ |gt_i − T est_i|²: the alignment
+/// for two gravity-aligned frames (the S-Graph's map and the BIM are both z-up). A 6-DoF fit of
+/// the nearly planar trajectory of a walking robot leaves roll and pitch to the centimetre bob
+/// of its gait, and a few degrees of tilt there would tilt every aligned wall by as much.
+Eigen::Isometry3d AlignPositionsYaw(const std::vector<Eigen::Vector3d>& estimate,
+                                    const std::vector<Eigen::Vector3d>& truth);
+
 struct TrajectoryError {
   int keyframes{0};
   double sgraph_rmse{0.0};  // aligned APE (translation) of the optimized keyframe poses
   double odom_rmse{0.0};    // the same for the odometry poses of the keyframes
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // the S-Graph alignment
+  // The same with the gravity-aware alignment (AlignPositionsYaw): how the map is compared
+  // with the BIM's planes and rooms.
+  double sgraph_rmse_gravity{0.0};
+  double odom_rmse_gravity{0.0};
+  Eigen::Isometry3d bim_T_map_gravity{Eigen::Isometry3d::Identity()};
 };
 TrajectoryError EvaluateTrajectory(const SGraph& graph, const std::vector<StampedPose>& truth);
 
@@ -44,11 +56,16 @@ struct PlaneError {
 std::vector<PlaneError> EvaluatePlanes(const SGraph& graph, const agraph::AGraph& building,
                                        const Eigen::Isometry3d& bim_T_map, int min_points);
 
+/// Rooms against the BIM rooms the robot walked through (A-Graph rooms holding ≥ 2 keyframes
+/// by ground truth). An S-Graph room or corridor is correct when its centre (in bim) lies in a
+/// walked room that no earlier S-Graph room took; false otherwise (outside the walked rooms, or
+/// a second S-Graph room for one BIM room).
 struct RoomEvaluation {
   int walked{0};       // A-Graph rooms with ≥ 2 keyframes inside
-  int found{0};        // of those, rooms with a correct S-Graph room
+  int found{0};        // of those, rooms with an S-Graph room centred inside
   int detected{0};     // S-Graph rooms and corridors
-  int false_rooms{0};  // S-Graph rooms whose centre is not in the room their keyframes are in
+  int false_rooms{0};  // S-Graph rooms centred outside the walked rooms, plus duplicates
+  int duplicates{0};   // of those, second (third...) S-Graph rooms in one BIM room
 };
 RoomEvaluation EvaluateRooms(const SGraph& graph, const agraph::AGraph& building,
                              const std::vector<StampedPose>& truth,

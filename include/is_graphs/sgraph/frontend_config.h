@@ -36,6 +36,10 @@ struct FrontendConfig {
   double point_sigma{0.03};        // range noise used for the plane covariance
   int max_effective_points{150};   // cap on independent points (correlated errors)
   bool extract_floor{true};
+  // A floor candidate is dropped when more than this share of its points have other points
+  // straight above them (within floor_cover_height): walls, not a floor.
+  double floor_max_covered{0.5};
+  double floor_cover_height{0.6};
 
   // Association: Mahalanobis gate (chi-square, 3 dof) on the plane difference, with covariance
   // floors standing in for the pose uncertainty; plus an overlap test on the segments.

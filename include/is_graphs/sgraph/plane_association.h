@@ -41,8 +41,23 @@ double SegmentGap(const PlaneSegment& observed, const MapPlaneView& mapped);
 
 /// The mapped plane of least Mahalanobis distance within the chi-square gate whose extent the
 /// segment overlaps or nearly touches (SegmentGap ≤ association_max_gap); index −1 if none.
+/// Mapped planes listed in `excluded` (indices) are not considered.
 Association AssociatePlane(const PlaneSegment& observed_in_map,
-                           const std::vector<MapPlaneView>& mapped, const FrontendConfig& config);
+                           const std::vector<MapPlaneView>& mapped, const FrontendConfig& config,
+                           const std::vector<int>& excluded = {});
+
+/// Whether two segments of one scan can lie on one plane: each one's middle within
+/// `tolerance` of the other's plane. Within a scan the pose error is common to both, so the
+/// offset between them is measured as precisely as the points (a wall and a window set back
+/// 12 cm in it are two planes even where the map's gate, widened for drift, admits both).
+bool CoplanarInScan(const PlaneSegment& a, const PlaneSegment& b, double tolerance);
+
+/// Associates all segments of one scan (in M): each as AssociatePlane, but two segments that
+/// are not coplanar (CoplanarInScan with plane_distance_threshold) never take one mapped
+/// plane; the one further in Mahalanobis distance tries the next plane or becomes a new one.
+std::vector<Association> AssociateScan(const std::vector<PlaneSegment>& observed_in_map,
+                                       const std::vector<MapPlaneView>& mapped,
+                                       const FrontendConfig& config);
 
 }  // namespace sgraph
 }  // namespace is_graphs

@@ -28,8 +28,15 @@ struct PlaneFit {
 /// tangent with r_i = n·p_i − d, scaled down to at most `max_effective_points` independent
 /// points (neighbouring LiDAR points share calibration and deskew errors). nullopt for fewer
 /// than 3 points or a degenerate (collinear) set.
+///
+/// With `vertical_about`, the normal is held perpendicular to that (gravity's up) axis: total
+/// least squares of the points' horizontal projection. A wall is vertical, and a free fit of its
+/// returns tilts by degrees where a recessed window or door frame falls inside the inlier band
+/// over part of its height; the information stays the data's (the tilt is then a measurement of
+/// zero with the spread the points support).
 std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>& indices,
-                                 double point_sigma, int max_effective_points);
+                                 double point_sigma, int max_effective_points,
+                                 const std::optional<Eigen::Vector3d>& vertical_about = std::nullopt);
 
 /// The information of the minimal tangent as the rank-3 covariance of (n, d): G H⁻¹ Gᵀ with
 /// G = diag(B, 1).

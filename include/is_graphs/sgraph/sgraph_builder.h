@@ -76,6 +76,8 @@ class SGraphBuilder {
                             ScanResult& result);
   void ExtendPlane(MapPlane& mapped, const PlaneSegment& observed_in_map);
   // Rooms and corridors around a keyframe, and the floor over them; mutex held.
+  /// Whether `point` (x, y in M) lies in front of every listed wall (0.3 m margin).
+  bool InsideWalls(const std::vector<int>& wall_ids, const Eigen::Vector2d& point) const;
   void UpdateRooms(int keyframe);
   void UpdateFloor();
   double FloorHeight() const;

@@ -64,6 +64,8 @@ std::string FrontendConfig::Validate() const {
   c.Positive("segment_gap", segment_gap);
   c.Positive("point_sigma", point_sigma);
   c.Range("max_effective_points", max_effective_points, 3, 1e7);
+  c.Range("floor_max_covered", floor_max_covered, 0.0, 1.0);
+  c.Positive("floor_cover_height", floor_cover_height);
   c.Positive("association_chi2", association_chi2);
   c.Positive("association_min_sigma_d", association_min_sigma_d);
   c.Positive("association_min_sigma_angle_deg", association_min_sigma_angle_deg);

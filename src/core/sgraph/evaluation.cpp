@@ -69,6 +69,27 @@ Eigen::Isometry3d AlignPositions(const std::vector<Eigen::Vector3d>& estimate,
   return t;
 }
 
+Eigen::Isometry3d AlignPositionsYaw(const std::vector<Eigen::Vector3d>& estimate,
+                                    const std::vector<Eigen::Vector3d>& truth) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  if (estimate.empty() || estimate.size() != truth.size()) return t;
+  Eigen::Vector3d mean_e = Eigen::Vector3d::Zero(), mean_t = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < estimate.size(); ++i) mean_e += estimate[i], mean_t += truth[i];
+  mean_e /= estimate.size();
+  mean_t /= truth.size();
+  // The yaw maximizing Σ (R e_i)·t_i over the horizontal parts of the centred points.
+  double sin_sum = 0.0, cos_sum = 0.0;
+  for (size_t i = 0; i < estimate.size(); ++i) {
+    const Eigen::Vector2d e = (estimate[i] - mean_e).head<2>(), g = (truth[i] - mean_t).head<2>();
+    cos_sum += e.dot(g);
+    sin_sum += e.x() * g.y() - e.y() * g.x();
+  }
+  const double yaw = estimate.size() >= 2 ? std::atan2(sin_sum, cos_sum) : 0.0;
+  t.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  t.translation() = mean_t - t.linear() * mean_e;
+  return t;
+}
+
 TrajectoryError EvaluateTrajectory(const SGraph& graph, const std::vector<StampedPose>& truth) {
   TrajectoryError e;
   std::vector<Eigen::Vector3d> est, odom, gt;
@@ -83,6 +104,9 @@ TrajectoryError EvaluateTrajectory(const SGraph& graph, const std::vector<Stampe
   e.bim_T_map = AlignPositions(est, gt);
   e.sgraph_rmse = Rmse(est, gt, e.bim_T_map);
   e.odom_rmse = Rmse(odom, gt, AlignPositions(odom, gt));
+  e.bim_T_map_gravity = AlignPositionsYaw(est, gt);
+  e.sgraph_rmse_gravity = Rmse(est, gt, e.bim_T_map_gravity);
+  e.odom_rmse_gravity = Rmse(odom, gt, AlignPositionsYaw(odom, gt));
   return e;
 }
 
@@ -123,37 +147,29 @@ RoomEvaluation EvaluateRooms(const SGraph& graph, const agraph::AGraph& building
                              const std::vector<StampedPose>& truth,
                              const Eigen::Isometry3d& bim_T_map) {
   RoomEvaluation e;
-  std::map<int, int> keyframe_room;  // keyframe id -> A-Graph room by ground truth
-  std::map<int, int> keyframes_in;   // A-Graph room -> keyframe count
+  std::map<int, int> keyframes_in;  // A-Graph room -> keyframes inside it by ground truth
   for (const auto& k : graph.keyframes) {
     const auto t = TruthAt(truth, k.stamp);
     if (!t) continue;
     const int r = RoomContaining(building, t->translation().head<2>());
-    keyframe_room[k.id] = r;
     if (r >= 0) ++keyframes_in[r];
   }
-  std::map<int, bool> found;
+  std::map<int, bool> walked;
+  for (const auto& [r, n] : keyframes_in)
+    if (n >= 2) walked[r] = true;
+  e.walked = static_cast<int>(walked.size());
+  std::map<int, int> found;  // A-Graph room -> S-Graph rooms inside it
   for (const auto& room : graph.rooms) {
     ++e.detected;
-    const Eigen::Vector2d c = (bim_T_map * room.center).head<2>();
-    const int at = RoomContaining(building, c);
-    std::map<int, int> votes;
-    for (int k : room.keyframes)
-      if (keyframe_room.count(k)) ++votes[keyframe_room[k]];
-    int majority = -1, most = 0;
-    for (const auto& [r, n] : votes)
-      if (n > most) majority = r, most = n;
-    if (at >= 0 && at == majority) {
-      found[at] = true;
-    } else {
+    const int at = RoomContaining(building, (bim_T_map * room.center).head<2>());
+    if (at < 0 || !walked.count(at)) {
       ++e.false_rooms;
+    } else if (found[at]++ > 0) {
+      ++e.false_rooms;
+      ++e.duplicates;
     }
   }
-  for (const auto& [r, n] : keyframes_in) {
-    if (n < 2) continue;
-    ++e.walked;
-    if (found.count(r)) ++e.found;
-  }
+  e.found = static_cast<int>(found.size());
   return e;
 }
 

@@ -49,10 +49,13 @@ double SegmentGap(const PlaneSegment& observed, const MapPlaneView& mapped) {
 }
 
 Association AssociatePlane(const PlaneSegment& observed_in_map,
-                           const std::vector<MapPlaneView>& mapped, const FrontendConfig& config) {
+                           const std::vector<MapPlaneView>& mapped, const FrontendConfig& config,
+                           const std::vector<int>& excluded) {
   Association best;
   for (size_t i = 0; i < mapped.size(); ++i) {
     if (mapped[i].horizontal != observed_in_map.horizontal) continue;
+    if (std::find(excluded.begin(), excluded.end(), static_cast<int>(i)) != excluded.end())
+      continue;
     const double m2 = PlaneMahalanobis2(observed_in_map, mapped[i], config);
     if (!(m2 <= config.association_chi2) || m2 >= best.distance2) continue;
     if (SegmentGap(observed_in_map, mapped[i]) > config.association_max_gap) continue;
@@ -60,6 +63,40 @@ Association AssociatePlane(const PlaneSegment& observed_in_map,
     best.distance2 = m2;
   }
   return best;
+}
+
+bool CoplanarInScan(const PlaneSegment& a, const PlaneSegment& b, double tolerance) {
+  const Eigen::Vector3d mid_a = 0.5 * (a.start + a.end), mid_b = 0.5 * (b.start + b.end);
+  return std::abs(a.plane.SignedDistance(mid_b)) <= tolerance &&
+         std::abs(b.plane.SignedDistance(mid_a)) <= tolerance;
+}
+
+std::vector<Association> AssociateScan(const std::vector<PlaneSegment>& observed_in_map,
+                                       const std::vector<MapPlaneView>& mapped,
+                                       const FrontendConfig& config) {
+  const size_t n = observed_in_map.size();
+  std::vector<Association> result(n);
+  std::vector<std::vector<int>> excluded(n);
+  for (size_t i = 0; i < n; ++i) result[i] = AssociatePlane(observed_in_map[i], mapped, config);
+  // Each round moves one segment off a plane it shares with a non-coplanar one; a segment is
+  // excluded from at most every mapped plane, so this ends.
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t i = 0; i < n && !changed; ++i) {
+      for (size_t j = i + 1; j < n && !changed; ++j) {
+        if (result[i].index < 0 || result[i].index != result[j].index) continue;
+        if (observed_in_map[i].horizontal ||
+            CoplanarInScan(observed_in_map[i], observed_in_map[j],
+                           config.plane_distance_threshold))
+          continue;
+        const size_t loser = result[i].distance2 <= result[j].distance2 ? j : i;
+        excluded[loser].push_back(result[loser].index);
+        result[loser] = AssociatePlane(observed_in_map[loser], mapped, config, excluded[loser]);
+        changed = true;
+      }
+    }
+  }
+  return result;
 }
 
 }  // namespace sgraph

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "is_graphs/sgraph/floor_check.h"
 #include "is_graphs/sgraph/plane_fit.h"
 #include "is_graphs/sgraph/plane_segments.h"
 
@@ -45,8 +46,8 @@ std::vector<int> RansacPlane(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& clo
 bool MakeSegment(const PointList& points, const std::vector<int>& indices, bool horizontal,
                  const Eigen::Vector3d& up, const Eigen::Vector3d& sensor_origin,
                  const FrontendConfig& config, PlaneSegment& out) {
-  const auto fit =
-      FitPlane(points, indices, config.point_sigma, config.max_effective_points);
+  const auto fit = FitPlane(points, indices, config.point_sigma, config.max_effective_points,
+                            horizontal ? std::nullopt : std::optional<Eigen::Vector3d>(up));
   if (!fit) return false;
   geometry::Plane plane = fit->plane;
   Eigen::Matrix3d information = fit->information;
@@ -130,7 +131,10 @@ std::vector<PlaneSegment> ExtractPlanes(const PointList& points, const Eigen::Ve
     if (below.size() >= static_cast<size_t>(config.min_plane_points)) {
       const auto inliers =
           RansacPlane(cloud, below, pcl::SACMODEL_PERPENDICULAR_PLANE, up, config);
-      if (inliers.size() >= static_cast<size_t>(config.min_plane_points)) {
+      // A band of wall returns is not a floor: it has more wall straight above it.
+      if (inliers.size() >= static_cast<size_t>(config.min_plane_points) &&
+          FractionCoveredAbove(points, inliers, up, config.voxel_size, 0.5 * config.voxel_size,
+                               config.floor_cover_height) <= config.floor_max_covered) {
         for (int i : inliers) used[i] = 1;
         PlaneSegment floor;
         if (MakeSegment(points, inliers, true, up, sensor_origin, config, floor))

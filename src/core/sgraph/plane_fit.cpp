@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <optional>
 
 namespace is_graphs {
 namespace sgraph {
@@ -17,7 +18,8 @@ Eigen::Matrix<double, 3, 2> TangentBasis(const Eigen::Vector3d& n) {
 }
 
 std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>& indices,
-                                 double point_sigma, int max_effective_points) {
+                                 double point_sigma, int max_effective_points,
+                                 const std::optional<Eigen::Vector3d>& vertical_about) {
   const int n_points = static_cast<int>(indices.size());
   if (n_points < 3) return std::nullopt;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -32,7 +34,17 @@ std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>
   const Eigen::Vector3d values = eig.eigenvalues();  // ascending
   if (!(values(1) > 1e-9 * std::max(values(2), 1e-12))) return std::nullopt;  // collinear
   PlaneFit fit;
-  const Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
+  Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
+  if (vertical_about && vertical_about->norm() > 1e-9) {
+    // The scatter of the horizontal projection; the up direction gets the largest eigenvalue.
+    const Eigen::Vector3d up = vertical_about->normalized();
+    const Eigen::Matrix3d p = Eigen::Matrix3d::Identity() - up * up.transpose();
+    const Eigen::Matrix3d horizontal =
+        p * scatter * p + (values(2) + 1.0) * up * up.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig_h(horizontal);
+    if (!(eig_h.eigenvalues()(1) > 1e-9 * std::max(values(2), 1e-12))) return std::nullopt;
+    normal = eig_h.eigenvectors().col(0).normalized();
+  }
   fit.plane = geometry::Plane(normal, normal.dot(mean));
   fit.centroid = mean;
   // H = Σ J_iᵀ J_i / σ², J_i = [p_iᵀ B, −1]; computed from the moments about the origin.

@@ -187,13 +187,23 @@ void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSe
     v.end = p.end;
     views.push_back(v);
   }
+  std::vector<PlaneSegment> in_map_segments;
+  in_map_segments.reserve(segments.size());
   for (const auto& segment : segments) {
-    ++result.num_segments;
     PlaneSegment in_map = TransformSegment(segment, pose);
     in_map.low = pose.translation().z() + segment.low;  // heights in M (walls are vertical)
     in_map.high = pose.translation().z() + segment.high;
-    // Two segments of one scan may land on one mapped plane (a wall behind an obstacle).
-    const Association a = AssociatePlane(in_map, views, frontend_);
+    in_map_segments.push_back(in_map);
+  }
+  // Two coplanar segments of one scan may land on one mapped plane (a wall behind an
+  // obstacle), two parallel ones apart may not.
+  const std::vector<Association> associations =
+      AssociateScan(in_map_segments, views, frontend_);
+  for (size_t s = 0; s < segments.size(); ++s) {
+    const PlaneSegment& segment = segments[s];
+    const PlaneSegment& in_map = in_map_segments[s];
+    ++result.num_segments;
+    const Association& a = associations[s];
     int plane_id;
     if (a.index >= 0) {
       plane_id = views[a.index].id;

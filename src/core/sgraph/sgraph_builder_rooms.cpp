@@ -16,6 +16,20 @@ double SGraphBuilder::FloorHeight() const {
   return keyframes_.empty() ? 0.0 : keyframes_.front().pose.translation().z() - 0.5;
 }
 
+bool SGraphBuilder::InsideWalls(const std::vector<int>& wall_ids,
+                                const Eigen::Vector2d& point) const {
+  constexpr double kMargin = 0.3;  // m: a centre may sit this far behind one of the walls
+  for (int id : wall_ids) {
+    if (id < 0 || id >= static_cast<int>(planes_.size())) continue;
+    const geometry::Plane& plane = planes_[id].plane.plane;
+    const double horizontal = plane.normal.head<2>().norm();
+    if (horizontal < 0.9) continue;
+    // Normals point into the room: inside is in front of every wall.
+    if ((plane.normal.head<2>().dot(point) - plane.d) / horizontal < -kMargin) return false;
+  }
+  return true;
+}
+
 void SGraphBuilder::UpdateRooms(int keyframe) {
   const Eigen::Isometry3d& pose = keyframes_[keyframe].pose;
   const double z = pose.translation().z();
@@ -47,7 +61,11 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
     for (int id : candidate->walls)
       shared += std::count(room.planes.begin(), room.planes.end(), id) > 0 ? 1 : 0;
     const bool near = (room.center - candidate->center).norm() < 1.5;
-    const bool same = shared >= 2 && (near || room.type != candidate->type);
+    // Or each centre inside the other's walls (one room seen from elsewhere: a corridor's
+    // centre moves along it with the robot, a polygonal room's with the visible part of it).
+    const bool mutual = shared >= 1 && InsideWalls(room.planes, candidate->center) &&
+                        InsideWalls(candidate->walls, room.center);
+    const bool same = (shared >= 2 && (near || room.type != candidate->type)) || mutual;
     if (!same) continue;
     if (room.type == RoomType::kCorridor && candidate->type == RoomType::kRoom) {
       room.type = RoomType::kRoom;
