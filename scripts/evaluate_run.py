@@ -28,12 +28,18 @@ def read_trajectories(run_bag):
 
     with Reader(run_bag) as reader:
         topics = {c.topic for c in reader.connections}
-        if "/ground_truth/pose" not in topics and "ground_truth/pose" not in topics:
+
+        def present(name):  # rosbag record keeps relative names as given: with or without "/"
+            for topic in ("/" + name, name):
+                if topic in topics:
+                    return topic
+            return None
+
+        gt_topic, est_topic = present("ground_truth/pose"), present("pose_bim")
+        if gt_topic is None:
             fail(f"{run_bag}: no ground_truth/pose (the bag played had no ground truth)")
-        gt = file_interface.read_bag_trajectory(reader, "/ground_truth/pose")
-        est = None
-        if "/pose_bim" in topics:
-            est = file_interface.read_bag_trajectory(reader, "/pose_bim")
+        gt = file_interface.read_bag_trajectory(reader, gt_topic)
+        est = file_interface.read_bag_trajectory(reader, est_topic) if est_topic else None
     return gt, est
 
 

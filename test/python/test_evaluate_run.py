@@ -20,7 +20,8 @@ def quat_z(yaw):
     return math.cos(yaw / 2.0), math.sin(yaw / 2.0)
 
 
-def write_run(path, offset_xy=(0.0, 0.0), yaw_error_deg=0.0, localize_at=5.0, localized=True):
+def write_run(path, offset_xy=(0.0, 0.0), yaw_error_deg=0.0, localize_at=5.0, localized=True,
+              prefix="/"):
     """Ground truth: a 20 s walk along x at 0.5 m/s, 50 Hz, turning slowly; pose_bim from
     `localize_at` on, displaced by offset_xy and rotated by yaw_error_deg."""
     with rosbag.Bag(path, "w") as bag:
@@ -34,7 +35,7 @@ def write_run(path, offset_xy=(0.0, 0.0), yaw_error_deg=0.0, localize_at=5.0, lo
             gt.pose.position.y = 2.0
             gt.pose.position.z = 0.525
             gt.pose.orientation.w, gt.pose.orientation.z = quat_z(yaw)
-            bag.write("/ground_truth/pose", gt, gt.header.stamp)
+            bag.write(prefix + "ground_truth/pose", gt, gt.header.stamp)
             if localized and t - 1000.0 >= localize_at - 1e-9 and i % 5 == 0:
                 est = PoseWithCovarianceStamped()
                 est.header = gt.header
@@ -43,7 +44,7 @@ def write_run(path, offset_xy=(0.0, 0.0), yaw_error_deg=0.0, localize_at=5.0, lo
                 est.pose.pose.position.z = gt.pose.position.z
                 w, z = quat_z(yaw + math.radians(yaw_error_deg))
                 est.pose.pose.orientation.w, est.pose.pose.orientation.z = w, z
-                bag.write("/pose_bim", est, est.header.stamp)
+                bag.write(prefix + "pose_bim", est, est.header.stamp)
 
 
 def run(tmp_path, bag, *extra):
@@ -67,6 +68,14 @@ def test_reports_the_offset_put_in(tmp_path):
     assert n["yaw_max_deg"] == pytest.approx(0.5, abs=1e-3)
     assert n["poses_evaluated"] == pytest.approx(151, abs=1)
     assert "localized after 5.0 s" in proc.stdout
+
+
+def test_relative_topic_names_as_rosbag_record_writes_them(tmp_path):
+    bag = tmp_path / "run.bag"
+    write_run(str(bag), offset_xy=(0.0, 0.02), prefix="")
+    proc, n = run(tmp_path, bag)
+    assert proc.returncode == 0, proc.stderr
+    assert n["ape_xy_rmse_m"] == pytest.approx(0.02, abs=1e-4)
 
 
 def test_never_localized_exits_1_and_says_so(tmp_path):

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/merging/merger_config.h"
+#include "is_graphs/sgraph/sgraph.h"
+
+namespace is_graphs {
+namespace merging {
+
+/// The match pairs a merge uses: S-Graph id -> A-Graph id (an S node matches one A node).
+struct MatchPairs {
+  std::map<int, int> rooms;     // S-room id -> A-room id
+  std::map<int, int> surfaces;  // S-plane id -> A-wall-surface id
+  bool empty() const { return rooms.empty() && surfaces.empty(); }
+  size_t size() const { return rooms.size() + surfaces.size(); }
+};
+
+/// One match pair's residual after the solve: the published S-Graph node moved by the solved
+/// B_x_M against the solved A-Graph node (so a merge that bends the S-Graph cannot hide it).
+struct PairResidual {
+  int s_id{0};
+  int a_id{0};
+  bool corridor{false};   // rooms: an S-corridor (only the component across it counts)
+  bool used{true};        // false when the pair could not enter the problem (opposed normals)
+  double angle_deg{0.0};  // surfaces: angle between the moved S-normal and the A-normal
+  double offset{0.0};     // surfaces: |d_b − d_a| [m]
+  double distance{0.0};   // rooms: horizontal centre distance (across, for corridors) [m]
+  double chi2{0.0};       // squared whitened residual
+  int dof{0};
+};
+
+/// The solved iS-Graph: B_x_M, its covariance, the S-Graph keyframes corrected by the BIM and
+/// every match pair's residual.
+struct MergeSolution {
+  bool usable{false};
+  Eigen::Vector3d bim_x_map{Eigen::Vector3d::Zero()};  // x, y, yaw
+  double z{0.0};                                       // height of M in B (not estimated)
+  Eigen::Matrix3d covariance{Eigen::Matrix3d::Identity()};  // of (x, y, yaw)
+  bool covariance_ok{false};
+  std::map<int, Eigen::Isometry3d> keyframes;  // id -> optimized pose in M
+  std::vector<PairResidual> surfaces;
+  std::vector<PairResidual> rooms;
+  int iterations{0};
+  int residual_blocks{0};
+  double seconds{0.0};
+  double initial_cost{0.0};
+  double final_cost{0.0};
+  std::string message;
+
+  /// B_x_M as a gravity-aligned isometry, with z.
+  Eigen::Isometry3d BimTMap() const;
+};
+
+/// Builds the iS-Graph problem in one ceres::Problem and solves it (SPARSE_NORMAL_CHOLESKY on
+/// SuiteSparse); B_x_M's covariance with ceres::Covariance (SPARSE_QR on SuiteSparse).
+///   A-Graph: agraph::AGraphProblem::AddTo (BIM priors, wall-centre and doorway factors).
+///   S-Graph (config.optimize_sgraph): its factors rebuilt from the snapshot (odometry,
+///     keyframe–plane, room–plane, corridor–plane, floor–room; the first keyframe fixed as the
+///     gauge of M; the room and floor offsets measured on the snapshot). Otherwise the S-Graph
+///     nodes used by the match are held constant.
+///   Match: SurfaceMatchCost per surface pair, RoomMatchCost / CorridorMatchCost per room
+///     pair (Huber), TransformPriorCost at `prior` (the matcher's guess).
+/// `initial` and `prior` are (x, y, yaw); `z` is the height of M in B. Pairs naming nodes that
+/// are not in the graphs are skipped. The A-Graph must be valid (agraph::ValidateAGraph).
+MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_graph,
+                         const MatchPairs& pairs, const Eigen::Vector3d& initial,
+                         const Eigen::Vector3d& prior, double z, const MergerConfig& config);
+
+/// The direction across an S-corridor in M (its first plane's horizontal normal), or nullopt-like
+/// zero when the corridor has no plane in the graph.
+Eigen::Vector2d CorridorAcross(const sgraph::SGraph& s_graph, const sgraph::Room& room);
+
+}  // namespace merging
+}  // namespace is_graphs

@@ -1,0 +1,84 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/matching/graph_match.h"
+#include "is_graphs/merging/consistency_check.h"
+#include "is_graphs/merging/is_graph_problem.h"
+#include "is_graphs/merging/merger_config.h"
+#include "is_graphs/sgraph/sgraph.h"
+
+namespace is_graphs {
+namespace merging {
+
+enum class MergeEvent {
+  kNone,       // nothing merged (no merge yet and no UNIQUE match)
+  kLocalized,  // a first (or new, after LOST) merge holds
+  kUpdated,    // the merge was re-solved and still holds
+  kRejected,   // a UNIQUE match did not survive its own merge: still not localized
+  kLost,       // the merge was contradicted and dropped
+};
+
+const char* ToString(MergeEvent event);
+
+struct MergeOutput {
+  MergeEvent event{MergeEvent::kNone};
+  bool merged{false};  // a pose may be published
+  Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // B_x_M (gravity-aligned)
+  /// B_x_M composed with the BIM's correction of the S-Graph at its newest keyframe: maps the
+  /// robot's current pose in M (map <- odom <- base_link, as tf has it) into B.
+  Eigen::Isometry3d bim_T_map_corrected{Eigen::Isometry3d::Identity()};
+  Eigen::Matrix3d covariance{Eigen::Matrix3d::Identity()};  // of (x, y, yaw)
+  MergeSolution solution;
+  ConsistencyReport consistency;
+  std::string message;
+};
+
+/// The merger's core: keeps the A-Graph, the match pairs gathered from UNIQUE matches and the
+/// current B_x_M; merges each new match or S-Graph revision into the iS-Graph (SolveMerge),
+/// checks it (CheckConsistency, and new UNIQUE matches against the merged B_x_M) and drops the
+/// merge when contradicted. Not thread-safe: one worker calls it.
+class Merger {
+ public:
+  explicit Merger(const MergerConfig& config) : config_(config) {}
+
+  /// A new building: "" or why it is unusable (then no A-Graph is held). Resets the merge.
+  std::string SetAGraph(const agraph::AGraph& graph);
+  bool HasAGraph() const { return has_a_graph_; }
+  const agraph::AGraph& a_graph() const { return a_graph_; }
+  const std::string& a_graph_sha256() const { return a_graph_.source.sha256; }
+
+  /// A match (UNIQUE starts or extends the merge; others re-solve a merge with its pairs),
+  /// merged with the newest S-Graph (ids are stable across revisions).
+  MergeOutput OnMatch(const matching::GraphMatch& match, const sgraph::SGraph& s_graph);
+  /// A new S-Graph revision: re-solves the merge (if any) with the pairs gathered so far.
+  MergeOutput OnSGraph(const sgraph::SGraph& s_graph);
+  /// Drops the merge (pairs and B_x_M).
+  void Reset();
+
+  bool merged() const { return merged_; }
+  const MatchPairs& pairs() const { return pairs_; }
+  const Eigen::Vector3d& bim_x_map() const { return xi_; }
+
+ private:
+  MergeOutput SolveAndCheck(const sgraph::SGraph& s_graph, bool starting);
+  double HeightOfMap(const sgraph::SGraph& s_graph, double fallback) const;
+
+  MergerConfig config_;
+  agraph::AGraph a_graph_;
+  bool has_a_graph_{false};
+  bool merged_{false};
+  MatchPairs pairs_;
+  Eigen::Vector3d xi_{Eigen::Vector3d::Zero()};     // B_x_M: x, y, yaw
+  Eigen::Vector3d prior_{Eigen::Vector3d::Zero()};  // the last UNIQUE match's guess
+  double match_z_{0.0};
+};
+
+/// The newest keyframe's position in M (the origin when there is none).
+Eigen::Vector2d NewestKeyframePosition(const sgraph::SGraph& s_graph);
+
+}  // namespace merging
+}  // namespace is_graphs

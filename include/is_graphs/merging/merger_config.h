@@ -1,0 +1,58 @@
+#pragma once
+
+#include <string>
+
+#include "is_graphs/agraph/agraph_problem.h"
+#include "is_graphs/sgraph/backend_config.h"
+
+namespace is_graphs {
+namespace merging {
+
+/// Everything the merger (iS-Graph problem, consistency check, pose covariance) is tuned by.
+/// The ROS parameters of merger_node carry the same names (config/merger.yaml).
+struct MergerConfig {
+  // Match constraints between the graphs (whitened by these σ, under a Huber loss).
+  double surface_angle_sigma_deg{1.0};  // S-plane normal moved by B_x_M vs. A-surface normal
+  double surface_offset_sigma{0.05};    // m: plane offsets
+  double room_sigma{0.15};              // m: S-room centre moved by B_x_M vs. A-room centre
+  double match_huber{1.0};              // Huber scale on the whitened match residuals [σ]
+
+  // Weak prior on B_x_M at the matcher's guess (keeps a badly conditioned merge in place).
+  double prior_translation_sigma{2.0};  // m
+  double prior_yaw_sigma_deg{10.0};
+
+  // Optimize the S-Graph together with B_x_M (its own factors, rebuilt from the snapshot), so
+  // that the BIM corrects the drift; false: the S-Graph is held as published.
+  bool optimize_sgraph{true};
+  sgraph::BackendConfig sgraph;        // σ and losses of the S-Graph factors (their defaults)
+  agraph::AGraphProblemConfig agraph;  // σ of the BIM priors, wall and doorway factors
+
+  int max_iterations{30};
+  double max_solver_time{0.5};  // s
+  int num_threads{1};
+
+  // Consistency of a merge after each solve: a match pair is an inlier when its residual is
+  // within these gates; the merge holds while enough pairs are inliers.
+  double gate_angle_deg{4.0};
+  double gate_offset{0.25};         // m
+  double gate_room{0.6};            // m
+  double min_inlier_fraction{0.6};  // of the pairs
+  int min_surface_inliers{3};
+  int min_room_inliers{1};
+  double max_chi2_per_dof{9.0};  // mean whitened squared residual of the inliers
+  // A new UNIQUE match implying a B_x_M this far from the merged one contradicts it.
+  double max_jump_translation{0.5};  // m
+  double max_jump_yaw_deg{5.0};
+
+  // Floors of the published pose covariance (added to the propagated B_x_M covariance).
+  double pose_sigma_xy{0.02};  // m
+  double pose_sigma_z{0.05};   // m
+  double pose_sigma_roll_pitch_deg{0.5};
+  double pose_sigma_yaw_deg{0.2};
+
+  /// "" when valid, else "<field> <what is wrong>" (the field's name first).
+  std::string Validate() const;
+};
+
+}  // namespace merging
+}  // namespace is_graphs

@@ -1,0 +1,147 @@
+#include "is_graphs/merging/merger.h"
+
+#include "is_graphs/agraph/agraph_validation.h"
+#include "is_graphs/geometry/se3.h"
+
+namespace is_graphs {
+namespace merging {
+namespace {
+
+MatchPairs ToPairs(const matching::GraphMatch& match) {
+  MatchPairs pairs;
+  for (const auto& p : match.room_pairs) pairs.rooms[p.s_id] = p.a_id;
+  for (const auto& p : match.surface_pairs) pairs.surfaces[p.s_id] = p.a_id;
+  return pairs;
+}
+
+const sgraph::Keyframe* NewestKeyframe(const sgraph::SGraph& g) {
+  const sgraph::Keyframe* newest = nullptr;
+  for (const auto& k : g.keyframes)
+    if (!newest || k.stamp >= newest->stamp) newest = &k;
+  return newest;
+}
+
+}  // namespace
+
+const char* ToString(MergeEvent event) {
+  switch (event) {
+    case MergeEvent::kNone: return "none";
+    case MergeEvent::kLocalized: return "localized";
+    case MergeEvent::kUpdated: return "updated";
+    case MergeEvent::kRejected: return "rejected";
+    case MergeEvent::kLost: return "lost";
+  }
+  return "?";
+}
+
+Eigen::Vector2d NewestKeyframePosition(const sgraph::SGraph& s_graph) {
+  const sgraph::Keyframe* k = NewestKeyframe(s_graph);
+  return k ? Eigen::Vector2d(k->pose.translation().head<2>()) : Eigen::Vector2d::Zero();
+}
+
+std::string Merger::SetAGraph(const agraph::AGraph& graph) {
+  Reset();
+  has_a_graph_ = false;
+  const std::string error = agraph::ValidateAGraph(graph);
+  if (!error.empty()) return error;
+  a_graph_ = graph;
+  has_a_graph_ = true;
+  return "";
+}
+
+void Merger::Reset() {
+  merged_ = false;
+  pairs_ = MatchPairs();
+}
+
+double Merger::HeightOfMap(const sgraph::SGraph& s_graph, double fallback) const {
+  // M's height in B: the storey's floor elevation minus the S-Graph floor's height in M.
+  if (s_graph.floors.empty() || pairs_.rooms.empty()) return fallback;
+  const int a_room = pairs_.rooms.begin()->second;
+  if (a_room < 0 || a_room >= static_cast<int>(a_graph_.rooms.size())) return fallback;
+  const int storey = a_graph_.rooms[a_room].storey;
+  const double elevation = storey >= 0 && storey < static_cast<int>(a_graph_.storeys.size())
+                               ? a_graph_.storeys[storey].elevation
+                               : a_graph_.rooms[a_room].z_min;
+  return elevation - s_graph.floors.front().height;
+}
+
+MergeOutput Merger::OnMatch(const matching::GraphMatch& match, const sgraph::SGraph& s_graph) {
+  MergeOutput out;
+  if (!has_a_graph_ || match.a_graph_sha256 != a_graph_sha256()) {
+    out.message = "match for another A-Graph (" + match.a_graph_sha256 + "): ignored";
+    return out;
+  }
+  if (match.status != matching::MatchStatus::kUnique) {
+    if (!merged_) {
+      out.message = std::string("match ") + matching::ToString(match.status) + ": not merging";
+      return out;
+    }
+    return OnSGraph(s_graph);
+  }
+  const Eigen::Vector3d guess = geometry::ToXYYaw(match.bim_T_map);
+  if (merged_) {
+    const TransformJump jump = CompareTransforms(xi_, guess, NewestKeyframePosition(s_graph));
+    if (!TransformsAgree(jump, config_)) {
+      Reset();
+      out.event = MergeEvent::kLost;
+      out.message = "a new UNIQUE match contradicts the merge (" +
+                    std::to_string(jump.translation) + " m, " + std::to_string(jump.yaw_deg) +
+                    " deg apart): merge dropped, matching again";
+      return out;
+    }
+    for (const auto& [s, a] : ToPairs(match).rooms) pairs_.rooms[s] = a;
+    for (const auto& [s, a] : ToPairs(match).surfaces) pairs_.surfaces[s] = a;
+    prior_ = guess;
+    match_z_ = match.bim_T_map.translation().z();
+    return SolveAndCheck(s_graph, false);
+  }
+  pairs_ = ToPairs(match);
+  xi_ = guess;
+  prior_ = guess;
+  match_z_ = match.bim_T_map.translation().z();
+  return SolveAndCheck(s_graph, true);
+}
+
+MergeOutput Merger::OnSGraph(const sgraph::SGraph& s_graph) {
+  if (!merged_) return MergeOutput();
+  return SolveAndCheck(s_graph, false);
+}
+
+MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) {
+  MergeOutput out;
+  const double z = HeightOfMap(s_graph, match_z_);
+  out.solution = SolveMerge(a_graph_, s_graph, pairs_, xi_, prior_, z, config_);
+  out.consistency = CheckConsistency(out.solution, config_);
+  if (!out.consistency.consistent) {
+    const bool was_merged = merged_;
+    Reset();
+    out.event = was_merged ? MergeEvent::kLost : MergeEvent::kRejected;
+    out.message = (was_merged ? "merge contradicted, dropped: " : "UNIQUE match rejected: ") +
+                  out.consistency.message;
+    return out;
+  }
+  // The outliers of a consistent merge are wrong pairs (or walls moved since the BIM): drop them.
+  for (int s : out.consistency.outlier_surfaces) pairs_.surfaces.erase(s);
+  for (int s : out.consistency.outlier_rooms) pairs_.rooms.erase(s);
+  xi_ = out.solution.bim_x_map;
+  merged_ = true;
+  out.merged = true;
+  out.event = starting ? MergeEvent::kLocalized : MergeEvent::kUpdated;
+  out.bim_T_map = out.solution.BimTMap();
+  out.covariance = out.solution.covariance;
+  out.bim_T_map_corrected = out.bim_T_map;
+  if (const sgraph::Keyframe* k = NewestKeyframe(s_graph)) {
+    auto corrected = out.solution.keyframes.find(k->id);
+    if (corrected != out.solution.keyframes.end()) {
+      const Eigen::Isometry3d c = out.bim_T_map * corrected->second * k->pose.inverse();
+      out.bim_T_map_corrected = geometry::IsometryFromXYYaw(
+          c.translation().x(), c.translation().y(), geometry::Yaw(c), z);
+    }
+  }
+  out.message = out.consistency.message;
+  return out;
+}
+
+}  // namespace merging
+}  // namespace is_graphs

@@ -1,0 +1,55 @@
+#include "is_graphs/merging/merger_config.h"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+namespace is_graphs {
+namespace merging {
+
+std::string MergerConfig::Validate() const {
+  const std::pair<const char*, double> positive[] = {
+      {"surface_angle_sigma_deg", surface_angle_sigma_deg},
+      {"surface_offset_sigma", surface_offset_sigma},
+      {"room_sigma", room_sigma},
+      {"match_huber", match_huber},
+      {"prior_translation_sigma", prior_translation_sigma},
+      {"prior_yaw_sigma_deg", prior_yaw_sigma_deg},
+      {"max_solver_time", max_solver_time},
+      {"gate_angle_deg", gate_angle_deg},
+      {"gate_offset", gate_offset},
+      {"gate_room", gate_room},
+      {"max_chi2_per_dof", max_chi2_per_dof},
+      {"max_jump_translation", max_jump_translation},
+      {"max_jump_yaw_deg", max_jump_yaw_deg},
+      {"pose_sigma_xy", pose_sigma_xy},
+      {"pose_sigma_z", pose_sigma_z},
+      {"pose_sigma_roll_pitch_deg", pose_sigma_roll_pitch_deg},
+      {"pose_sigma_yaw_deg", pose_sigma_yaw_deg}};
+  for (const auto& [name, value] : positive) {
+    if (!std::isfinite(value) || value <= 0.0) {
+      std::ostringstream out;
+      out << name << " must be a positive number, got " << value;
+      return out.str();
+    }
+  }
+  if (!std::isfinite(min_inlier_fraction) || min_inlier_fraction < 0.0 ||
+      min_inlier_fraction > 1.0) {
+    return "min_inlier_fraction must be in [0, 1], got " + std::to_string(min_inlier_fraction);
+  }
+  if (min_surface_inliers < 0)
+    return "min_surface_inliers must be >= 0, got " + std::to_string(min_surface_inliers);
+  if (min_room_inliers < 0)
+    return "min_room_inliers must be >= 0, got " + std::to_string(min_room_inliers);
+  if (max_iterations < 1)
+    return "max_iterations must be >= 1, got " + std::to_string(max_iterations);
+  if (num_threads < 1) return "num_threads must be >= 1, got " + std::to_string(num_threads);
+  std::string error = sgraph.Validate();
+  if (!error.empty()) return "sgraph." + error;
+  error = agraph.Validate();
+  if (!error.empty()) return "agraph." + error;
+  return "";
+}
+
+}  // namespace merging
+}  // namespace is_graphs

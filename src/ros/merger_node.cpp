@@ -1,0 +1,424 @@
+// merger_node: on a UNIQUE graph_match, merges the A-Graph (`a_graph`) and the S-Graph
+// (`s_graph`) into the iS-Graph and publishes the robot in the BIM: tf bim -> map, `pose_bim`
+// (at odometry rate), `localization_status`, `is_graph` and `is_graph/markers`. Thin: the work
+// is in is_graphs_core (merging::Merger). Solves run on a worker thread that takes the newest
+// S-Graph and match, so a slow solve never piles up callbacks; no pose before the first merge
+// holds, and none after it was contradicted (LOST) until a new UNIQUE match merges.
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <is_graphs/AGraph.h>
+#include <is_graphs/GraphMatch.h>
+#include <is_graphs/ISGraph.h>
+#include <is_graphs/LocalizationStatus.h>
+#include <is_graphs/SGraph.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <condition_variable>
+#include <cstdlib>
+#include <mutex>
+#include <thread>
+
+#include "agraph_conversions.h"
+#include "graph_match_conversions.h"
+#include "is_graphs/geometry/se3.h"
+#include "is_graphs/merging/merge_state.h"
+#include "is_graphs/merging/merger.h"
+#include "merger_markers.h"
+#include "param_helpers.h"
+#include "pose_conversions.h"
+#include "sgraph_conversions.h"
+#include "tf_lookup.h"
+
+namespace is_graphs {
+namespace {
+
+using ros_params::Read;
+
+struct MergerNodeParams {
+  merging::MergerConfig merger;
+  std::string bim_frame{"bim"}, map_frame{"map"}, odom_frame{"odom"};
+  double match_wait{2.0};   // s: a match for an S-Graph revision not seen yet waits this long
+  double status_rate{1.0};  // Hz
+  ros_markers::MergerMarkerStyle markers;
+};
+
+MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
+  MergerNodeParams p;
+  auto& c = p.merger;
+  Read(pnh, "surface_angle_sigma_deg", c.surface_angle_sigma_deg);
+  Read(pnh, "surface_offset_sigma", c.surface_offset_sigma);
+  Read(pnh, "room_sigma", c.room_sigma);
+  Read(pnh, "match_huber", c.match_huber);
+  Read(pnh, "prior_translation_sigma", c.prior_translation_sigma);
+  Read(pnh, "prior_yaw_sigma_deg", c.prior_yaw_sigma_deg);
+  Read(pnh, "optimize_sgraph", c.optimize_sgraph);
+  Read(pnh, "max_iterations", c.max_iterations);
+  Read(pnh, "max_solver_time", c.max_solver_time);
+  Read(pnh, "num_threads", c.num_threads);
+  Read(pnh, "gate_angle_deg", c.gate_angle_deg);
+  Read(pnh, "gate_offset", c.gate_offset);
+  Read(pnh, "gate_room", c.gate_room);
+  Read(pnh, "min_inlier_fraction", c.min_inlier_fraction);
+  Read(pnh, "min_surface_inliers", c.min_surface_inliers);
+  Read(pnh, "min_room_inliers", c.min_room_inliers);
+  Read(pnh, "max_chi2_per_dof", c.max_chi2_per_dof);
+  Read(pnh, "max_jump_translation", c.max_jump_translation);
+  Read(pnh, "max_jump_yaw_deg", c.max_jump_yaw_deg);
+  Read(pnh, "pose_sigma_xy", c.pose_sigma_xy);
+  Read(pnh, "pose_sigma_z", c.pose_sigma_z);
+  Read(pnh, "pose_sigma_roll_pitch_deg", c.pose_sigma_roll_pitch_deg);
+  Read(pnh, "pose_sigma_yaw_deg", c.pose_sigma_yaw_deg);
+  Read(pnh, "bim_frame", p.bim_frame);
+  Read(pnh, "map_frame", p.map_frame);
+  Read(pnh, "odom_frame", p.odom_frame);
+  Read(pnh, "match_wait", p.match_wait);
+  Read(pnh, "status_rate", p.status_rate);
+  Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
+  p.markers.frame_id = p.bim_frame;
+  for (const auto& [name, value] : {std::pair<const char*, const std::string*>{"bim_frame", &p.bim_frame},
+                                    {"map_frame", &p.map_frame}, {"odom_frame", &p.odom_frame}})
+    if (value->empty())
+      throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must not be empty");
+  for (const auto& [name, value] : {std::pair<const char*, double>{"match_wait", p.match_wait},
+                                    {"status_rate", p.status_rate}})
+    if (!(value > 0.0))
+      throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
+  const std::string error = c.Validate();
+  if (!error.empty())  // Validate names the field first, which is the parameter's name
+    throw ros_params::ParamError("parameter '" + pnh.resolveName(error.substr(0, error.find(' '))) +
+                                 "': " + error);
+  return p;
+}
+
+/// The 6x6 covariance (x, y, z, roll, pitch, yaw) of the robot in B: B_x_M's (x, y, yaw)
+/// covariance moved to the robot's position p_M, plus the configured floors.
+boost::array<double, 36> PoseCovariance(const Eigen::Matrix3d& xi_covariance,
+                                        const Eigen::Isometry3d& bim_T_map,
+                                        const Eigen::Vector3d& p_map,
+                                        const merging::MergerConfig& c) {
+  const Eigen::Vector3d rp = bim_T_map.linear() * p_map;  // R p: the lever arm of a yaw error
+  Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
+  j(0, 2) = -rp.y();
+  j(1, 2) = rp.x();
+  const Eigen::Matrix3d planar = j * xi_covariance * j.transpose();
+  Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();
+  const int index[3] = {0, 1, 5};
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) cov(index[r], index[k]) = planar(r, k);
+  const double deg = M_PI / 180.0;
+  cov(0, 0) += c.pose_sigma_xy * c.pose_sigma_xy;
+  cov(1, 1) += c.pose_sigma_xy * c.pose_sigma_xy;
+  cov(2, 2) += c.pose_sigma_z * c.pose_sigma_z;
+  cov(3, 3) += std::pow(c.pose_sigma_roll_pitch_deg * deg, 2);
+  cov(4, 4) += std::pow(c.pose_sigma_roll_pitch_deg * deg, 2);
+  cov(5, 5) += std::pow(c.pose_sigma_yaw_deg * deg, 2);
+  boost::array<double, 36> out;
+  ros_conversions::ToArray(cov, out);
+  return out;
+}
+
+class MergerNode {
+ public:
+  MergerNode(ros::NodeHandle& nh, const MergerNodeParams& params)
+      : params_(params), merger_(params.merger), tf_buffer_(ros::Duration(30.0)),
+        tf_listener_(tf_buffer_), tf_(tf_buffer_) {
+    pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("pose_bim", 10);
+    status_pub_ = nh.advertise<is_graphs::LocalizationStatus>("localization_status", 1, true);
+    is_graph_pub_ = nh.advertise<is_graphs::ISGraph>("is_graph", 1, true);
+    marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("is_graph/markers", 1, true);
+    a_sub_ = nh.subscribe("a_graph", 1, &MergerNode::OnAGraph, this);
+    s_sub_ = nh.subscribe("s_graph", 1, &MergerNode::OnSGraph, this);
+    match_sub_ = nh.subscribe("graph_match", 10, &MergerNode::OnMatch, this);
+    odom_sub_ = nh.subscribe("odom", 100, &MergerNode::OnOdometry, this);
+    status_timer_ = nh.createTimer(ros::Duration(1.0 / params_.status_rate),
+                                   [this](const ros::TimerEvent&) { PublishStatus(); });
+    PublishStatus();
+    worker_ = std::thread([this] { Work(); });
+  }
+
+  ~MergerNode() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    worker_.join();
+  }
+
+ private:
+  // --- callbacks: store the newest input and wake the worker ---
+  void OnAGraph(const is_graphs::AGraph::ConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_a_ = msg;
+    wake_.notify_all();
+  }
+
+  void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (latest_s_ && msg->revision < latest_s_->revision) {
+      ROS_WARN("merger_node: S-Graph revision went back from %u to %u (sgraph_node restarted?): "
+               "merge reset, matching again", latest_s_->revision, msg->revision);
+      ResetLocked("the S-Graph restarted");
+    }
+    latest_s_ = msg;
+    new_s_ = true;
+    wake_.notify_all();
+  }
+
+  void OnMatch(const is_graphs::GraphMatch::ConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // A pending UNIQUE match is not replaced by a later non-UNIQUE one.
+    if (pending_match_ && pending_match_->status == is_graphs::GraphMatch::UNIQUE &&
+        msg->status != is_graphs::GraphMatch::UNIQUE)
+      return;
+    pending_match_ = msg;
+    pending_match_since_ = ros::WallTime::now();
+    wake_.notify_all();
+  }
+
+  void OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const ros::Time stamp = msg->header.stamp;
+    if (!last_odom_stamp_.isZero() && stamp + ros::Duration(1.0) < last_odom_stamp_) {
+      ROS_WARN("merger_node: odometry went back in time by %.1f s (bag restarted?): merge reset",
+               (last_odom_stamp_ - stamp).toSec());
+      ResetLocked("time went back");
+      tf_buffer_.clear();
+      latest_s_.reset();
+    }
+    last_odom_stamp_ = stamp;
+    const Eigen::Isometry3d odom_T_base = ros_conversions::FromPose(msg->pose.pose);
+    state_.AddOdometry(stamp.toSec(), odom_T_base.translation());
+    if (!localized_) return;
+    const Eigen::Isometry3d bim_T_map = bim_T_map_;
+    const Eigen::Matrix3d covariance = covariance_;
+    lock.unlock();
+
+    auto map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, stamp);
+    if (!map_T_odom.ok()) map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, ros::Time(0));
+    if (!map_T_odom.ok()) {  // a tf gap: no pose rather than a guessed one
+      ROS_WARN_THROTTLE(2.0, "merger_node: %s: pose_bim not published", map_T_odom.error().c_str());
+      return;
+    }
+    const Eigen::Isometry3d map_T_base = map_T_odom.value() * odom_T_base;
+    geometry_msgs::PoseWithCovarianceStamped pose;
+    pose.header.stamp = stamp;
+    pose.header.frame_id = params_.bim_frame;
+    pose.pose.pose = ros_conversions::ToPose(bim_T_map * map_T_base);
+    pose.pose.covariance =
+        PoseCovariance(covariance, bim_T_map, map_T_base.translation(), params_.merger);
+    pose_pub_.publish(pose);
+    if (stamp > last_tf_stamp_) {  // tf2 rejects repeated stamps
+      last_tf_stamp_ = stamp;
+      geometry_msgs::TransformStamped t = tf2::eigenToTransform(bim_T_map);
+      t.header.stamp = stamp;
+      t.header.frame_id = params_.bim_frame;
+      t.child_frame_id = params_.map_frame;
+      tf_broadcaster_.sendTransform(t);
+    }
+  }
+
+  // --- state (mutex_ held) ---
+  void ResetLocked(const std::string& why) {
+    reset_merger_ = true;
+    localized_ = false;
+    state_.Reset("reset: " + why + "; waiting for a unique match");
+    status_dirty_ = true;
+  }
+
+  void PublishStatus() {
+    is_graphs::LocalizationStatus msg;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      msg.header.stamp = ros::Time::now();
+      msg.header.frame_id = params_.bim_frame;
+      msg.state = static_cast<uint8_t>(state_.state());
+      if (state_.localized()) msg.localized_since = ros::Time(std::max(state_.localized_since(), 0.0));
+      msg.seconds_to_localize = state_.seconds_to_localize();
+      msg.distance_to_localize = state_.distance_to_localize();
+      msg.message = state_.message();
+      if (state_.localized())
+        msg.covariance = PoseCovariance(covariance_, bim_T_map_, Eigen::Vector3d::Zero(), params_.merger);
+      status_dirty_ = false;
+    }
+    status_pub_.publish(msg);
+  }
+
+  // --- worker ---
+  void Work() {
+    for (;;) {
+      is_graphs::AGraph::ConstPtr a_msg;
+      is_graphs::GraphMatch::ConstPtr match_msg;
+      is_graphs::SGraph::ConstPtr s_msg;
+      bool reset = false, solve_s = false;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait_for(lock, std::chrono::milliseconds(200));
+        if (stop_) return;
+        a_msg.swap(pending_a_);
+        reset = reset_merger_;
+        reset_merger_ = false;
+        s_msg = latest_s_;
+        if (pending_match_) {
+          const unsigned seen = latest_s_ ? latest_s_->revision : 0;
+          if (latest_s_ && pending_match_->s_graph_revision <= seen) {
+            match_msg.swap(pending_match_);
+          } else if ((ros::WallTime::now() - pending_match_since_).toSec() > params_.match_wait) {
+            ROS_WARN("merger_node: graph_match for S-Graph revision %u, newer than any seen (%u): "
+                     "ignored", pending_match_->s_graph_revision, seen);
+            pending_match_.reset();
+          }
+        }
+        solve_s = new_s_ && !match_msg;
+        if (!match_msg) new_s_ = false;
+      }
+      if (reset) merger_.Reset();
+      if (a_msg) SetAGraph(a_msg);
+      if (!s_msg || !merger_.HasAGraph()) continue;
+      if (match_msg) {
+        last_match_ = match_msg;
+        const matching::GraphMatch match = ros_conversions::FromMsg(*match_msg);
+        if (match.a_graph_sha256 != merger_.a_graph_sha256()) {
+          ROS_WARN_THROTTLE(5.0, "merger_node: graph_match for an A-Graph not loaded here "
+                            "(sha256 %s, have %s): ignored", match.a_graph_sha256.c_str(),
+                            merger_.a_graph_sha256().c_str());
+          continue;
+        }
+        Apply(merger_.OnMatch(match, ros_conversions::FromMsg(*s_msg)), *s_msg);
+      } else if (solve_s && merger_.merged()) {
+        Apply(merger_.OnSGraph(ros_conversions::FromMsg(*s_msg)), *s_msg);
+      }
+    }
+  }
+
+  void SetAGraph(const is_graphs::AGraph::ConstPtr& msg) {
+    if (merger_.HasAGraph() && msg->source_sha256 == merger_.a_graph_sha256()) return;  // re-latched
+    const bool had = merger_.HasAGraph();
+    const std::string error = merger_.SetAGraph(ros_conversions::FromMsg(*msg));
+    a_msg_ = msg;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (had) {
+      ROS_WARN("merger_node: a new A-Graph ('%s', sha256 %s): the building changed, merge reset",
+               msg->building.c_str(), msg->source_sha256.c_str());
+      localized_ = false;
+      state_.Reset("the building changed; waiting for a unique match");
+      status_dirty_ = true;
+    }
+    if (!error.empty()) ROS_ERROR("merger_node: unusable A-Graph: %s", error.c_str());
+    else ROS_INFO("merger_node: A-Graph '%s' with %zu rooms", msg->building.c_str(), msg->rooms.size());
+  }
+
+  void Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg) {
+    using merging::MergeEvent;
+    const auto& sol = out.solution;
+    const Eigen::Vector3d xi = geometry::ToXYYaw(out.bim_T_map);
+    switch (out.event) {
+      case MergeEvent::kNone: return;
+      case MergeEvent::kRejected: ROS_WARN("merger_node: %s", out.message.c_str()); break;
+      case MergeEvent::kLost: ROS_WARN("merger_node: LOST: %s", out.message.c_str()); break;
+      case MergeEvent::kLocalized:
+        ROS_INFO("merger_node: LOCALIZED at S-Graph rev %u: B_x_M = (%.3f m, %.3f m, %.2f deg), "
+                 "%s, %d iterations, %.1f ms", s_msg.revision, xi.x(), xi.y(), xi.z() * 180 / M_PI,
+                 out.message.c_str(), sol.iterations, sol.seconds * 1e3);
+        break;
+      case MergeEvent::kUpdated:
+        ROS_DEBUG("merger_node: rev %u: B_x_M = (%.3f, %.3f, %.2f deg), %s, %.1f ms", s_msg.revision,
+                  xi.x(), xi.y(), xi.z() * 180 / M_PI, out.message.c_str(), sol.seconds * 1e3);
+        break;
+    }
+    bool publish_status = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (reset_merger_) return;  // reset meanwhile: this result is stale
+      const double stamp = s_msg.header.stamp.toSec();
+      if (out.merged) {
+        localized_ = true;
+        bim_T_map_ = out.bim_T_map_corrected;
+        covariance_ = out.covariance;
+        if (!state_.localized() || out.event == MergeEvent::kLocalized) {
+          state_.SetLocalized(stamp, "localized: " + out.message);
+          publish_status = true;
+        }
+      } else if (out.event == MergeEvent::kLost) {
+        localized_ = false;
+        state_.SetLost("lost: " + out.message + "; matching again");
+        publish_status = true;
+      }
+      publish_status = publish_status || status_dirty_;
+    }
+    if (publish_status) PublishStatus();
+    if (!out.merged) return;
+    if (is_graph_pub_.getNumSubscribers() > 0 && a_msg_) {
+      is_graphs::ISGraph msg;
+      msg.header.stamp = s_msg.header.stamp;
+      msg.header.frame_id = params_.bim_frame;
+      msg.a_graph = *a_msg_;
+      msg.s_graph = s_msg;
+      if (last_match_) msg.match = *last_match_;
+      msg.bim_T_map = ros_conversions::ToPose(out.bim_T_map);
+      is_graph_pub_.publish(msg);
+    }
+    if (marker_pub_.getNumSubscribers() > 0) {
+      auto markers = ros_markers::BuildMergerMarkers(merger_.a_graph(), ros_conversions::FromMsg(s_msg),
+                                                     merger_.pairs(), out.bim_T_map, params_.markers);
+      for (auto& m : markers.markers) m.header.stamp = s_msg.header.stamp;
+      marker_pub_.publish(markers);
+    }
+  }
+
+  MergerNodeParams params_;
+  merging::Merger merger_;  // the worker's
+  is_graphs::AGraph::ConstPtr a_msg_;         // the worker's
+  is_graphs::GraphMatch::ConstPtr last_match_;  // the worker's
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  ros_tf::TfLookup tf_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  ros::Publisher pose_pub_, status_pub_, is_graph_pub_, marker_pub_;
+  ros::Subscriber a_sub_, s_sub_, match_sub_, odom_sub_;
+  ros::Timer status_timer_;
+
+  std::mutex mutex_;  // guards everything below
+  std::condition_variable wake_;
+  is_graphs::AGraph::ConstPtr pending_a_;
+  is_graphs::SGraph::ConstPtr latest_s_;
+  bool new_s_{false};
+  is_graphs::GraphMatch::ConstPtr pending_match_;
+  ros::WallTime pending_match_since_;
+  bool reset_merger_{false};
+  bool stop_{false};
+  bool localized_{false};
+  bool status_dirty_{false};
+  Eigen::Isometry3d bim_T_map_{Eigen::Isometry3d::Identity()};
+  Eigen::Matrix3d covariance_{Eigen::Matrix3d::Identity()};
+  merging::MergeState state_;
+  ros::Time last_odom_stamp_;
+  ros::Time last_tf_stamp_;
+  std::thread worker_;
+};
+
+}  // namespace
+}  // namespace is_graphs
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "merger_node");
+  ros::NodeHandle nh;
+  ros::NodeHandle pnh("~");
+  try {
+    const auto params = is_graphs::ReadParams(pnh);
+    is_graphs::MergerNode node(nh, params);
+    ros::AsyncSpinner spinner(2);  // odometry keeps flowing while graphs are converted
+    spinner.start();
+    ros::waitForShutdown();
+    return EXIT_SUCCESS;
+  } catch (const is_graphs::ros_params::ParamError& e) {
+    ROS_FATAL("merger_node: %s", e.what());
+    return EXIT_FAILURE;
+  }
+}

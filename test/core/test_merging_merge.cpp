@@ -1,0 +1,264 @@
+// The merge on synthetic graphs: an S-Graph made from the A-Graph under a known B_x_M (with
+// keyframes observing its planes), merged with the true match; B_x_M recovered, wrong matches and
+// contradictions detected; the localization state's bookkeeping; the config's validation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "fixtures.h"
+#include "is_graphs/agraph/agraph_io.h"
+#include "is_graphs/geometry/se3.h"
+#include "is_graphs/matching/synthetic_sgraph.h"
+#include "is_graphs/merging/merge_state.h"
+#include "is_graphs/merging/merger.h"
+#include "is_graphs/sgraph/plane_fit.h"
+#include "matching_test_helpers.h"
+
+namespace is_graphs {
+namespace merging {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// The synthetic S-Graph with a keyframe at each room centre (chained by exact odometry) that
+// observes the room's planes exactly, and a floor 0.5 m below M's origin in B's storey.
+struct SyntheticCase {
+  matching::SyntheticSGraph s;
+  matching::GraphMatch match;
+};
+
+SyntheticCase MakeCase(const agraph::AGraph& building, const Eigen::Isometry3d& bim_T_map,
+                       double noise, std::uint64_t seed = 7) {
+  matching::SyntheticSGraphConfig config;
+  config.bim_T_map = bim_T_map;
+  config.normal_noise_deg = noise > 0 ? 0.3 : 0.0;
+  config.offset_noise = noise;
+  config.centre_noise = noise;
+  config.seed = seed;
+  SyntheticCase c;
+  c.s = matching::MakeSyntheticSGraph(building, config);
+  sgraph::SGraph& g = c.s.graph;
+  int previous = -1;
+  Eigen::Isometry3d previous_pose = Eigen::Isometry3d::Identity();
+  for (const auto& room : g.rooms) {
+    sgraph::Keyframe k;
+    k.id = static_cast<int>(g.keyframes.size());
+    k.stamp = k.id;
+    k.pose = geometry::IsometryFromXYYaw(room.center.x(), room.center.y(), 0.3 * k.id, 0.0);
+    k.odom_pose = k.pose;
+    k.previous = previous;
+    if (previous >= 0) k.relative_odom = previous_pose.inverse() * k.pose;
+    k.odom_information = Eigen::Matrix<double, 6, 6>::Identity() * 1e4;
+    for (int plane_id : room.planes) {
+      for (const auto& p : g.planes) {
+        if (p.id != plane_id) continue;
+        sgraph::PlaneObservation o;
+        o.keyframe = k.id;
+        o.plane = p.id;
+        o.local = p.plane.Transformed(k.pose.inverse());
+        o.information = Eigen::Matrix3d::Identity() * 1e4;
+        g.observations.push_back(o);
+      }
+    }
+    previous = k.id;
+    previous_pose = k.pose;
+    g.keyframes.push_back(k);
+  }
+  sgraph::Floor floor;
+  floor.height = building.storeys.front().elevation - bim_T_map.translation().z();
+  for (const auto& r : g.rooms) floor.rooms.push_back(r.id);
+  g.floors.push_back(floor);
+
+  c.match.status = matching::MatchStatus::kUnique;
+  c.match.a_graph_sha256 = building.source.sha256;
+  for (const auto& [s, a] : c.s.room_truth) c.match.room_pairs.push_back({a, s, 1.0});
+  for (const auto& [s, a] : c.s.plane_truth) c.match.surface_pairs.push_back({a, s, 1.0});
+  // The matcher's guess: off by 0.2 m and 2°.
+  c.match.bim_T_map = geometry::IsometryFromXYYaw(
+      bim_T_map.translation().x() + 0.2, bim_T_map.translation().y() - 0.1,
+      geometry::Yaw(bim_T_map) + 2.0 * kDeg, 0.0);
+  return c;
+}
+
+agraph::AGraph TwoRooms() {
+  auto loaded = agraph::LoadAGraph(testing::TwoRoomsPath());
+  EXPECT_TRUE(loaded.ok()) << loaded.error();
+  return loaded.value();
+}
+
+void ExpectRecovered(const MergeOutput& out, const Eigen::Isometry3d& truth, double tolerance_m,
+                     double tolerance_deg) {
+  ASSERT_TRUE(out.merged) << out.message;
+  const Eigen::Vector3d xi = geometry::ToXYYaw(out.bim_T_map);
+  EXPECT_NEAR(xi.x(), truth.translation().x(), tolerance_m);
+  EXPECT_NEAR(xi.y(), truth.translation().y(), tolerance_m);
+  EXPECT_NEAR(out.bim_T_map.translation().z(), truth.translation().z(), 1e-9);
+  EXPECT_LT(std::abs(geometry::NormalizeAngle(xi.z() - geometry::Yaw(truth))) / kDeg,
+            tolerance_deg);
+}
+
+TEST(Merge, RecoversAKnownTransformExactly) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.5);
+  const SyntheticCase c = MakeCase(building, truth, 0.0);
+  ASSERT_GE(c.match.room_pairs.size(), 2u);
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(out.event, MergeEvent::kLocalized) << out.message;
+  ExpectRecovered(out, truth, 1e-3, 0.05);
+  EXPECT_TRUE(out.solution.covariance_ok);
+  EXPECT_GT(out.covariance(0, 0), 0.0);
+  EXPECT_LT(std::sqrt(out.covariance(0, 0)), 0.05);
+  EXPECT_LT(std::sqrt(out.covariance(2, 2)) / kDeg, 1.0);
+  EXPECT_TRUE(out.consistency.consistent) << out.consistency.message;
+  // With no drift, the BIM's correction of the S-Graph is nil.
+  EXPECT_LT((out.bim_T_map_corrected.matrix() - out.bim_T_map.matrix()).norm(), 1e-3);
+  // The next revision keeps the merge.
+  const MergeOutput again = merger.OnSGraph(c.s.graph);
+  EXPECT_EQ(again.event, MergeEvent::kUpdated) << again.message;
+  ExpectRecovered(again, truth, 1e-3, 0.05);
+}
+
+TEST(Merge, RecoversAKnownTransformWithoutOptimizingTheSGraph) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(-7.0, 1.5, -120.0 * kDeg, 0.5);
+  const SyntheticCase c = MakeCase(building, truth, 0.0);
+  MergerConfig config;
+  config.optimize_sgraph = false;
+  Merger merger(config);
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  ExpectRecovered(merger.OnMatch(c.match, c.s.graph), truth, 1e-3, 0.05);
+}
+
+TEST(Merge, RecoversAKnownTransformFromNoisyGraphs) {
+  const agraph::AGraph building = TwoRooms();
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    const Eigen::Isometry3d truth =
+        geometry::IsometryFromXYYaw(1.0 * seed, -0.5 * seed, 25.0 * seed * kDeg, 0.5);
+    const SyntheticCase c = MakeCase(building, truth, 0.02, seed);
+    Merger merger{MergerConfig()};
+    ASSERT_EQ(merger.SetAGraph(building), "");
+    const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+    EXPECT_EQ(out.event, MergeEvent::kLocalized) << out.message;
+    ExpectRecovered(out, truth, 0.05, 0.5);
+  }
+}
+
+TEST(Merge, RecoversAKnownTransformInAProjectBuilding) {
+  std::string why;
+  const agraph::AGraph* building =
+      testing::LoadBuildingOnce(testing::ProjectBim("rotated.ifc"), &why);
+  if (!building) GTEST_SKIP() << why;
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(12.0, 4.0, 200.0 * kDeg, 0.5);
+  const SyntheticCase c = MakeCase(*building, truth, 0.0);
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(*building), "");
+  const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(out.event, MergeEvent::kLocalized) << out.message;
+  ExpectRecovered(out, truth, 1e-3, 0.05);
+}
+
+TEST(Merge, AWrongMatchIsRejected) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.5);
+  SyntheticCase c = MakeCase(building, truth, 0.0);
+  ASSERT_EQ(c.match.room_pairs.size(), 2u);
+  // Swap the rooms, and pair every plane with a surface of the other room.
+  std::swap(c.match.room_pairs[0].a_id, c.match.room_pairs[1].a_id);
+  std::mt19937 rng(3);
+  for (auto& p : c.match.surface_pairs)
+    p.a_id = static_cast<int>(rng() % building.surfaces.size());
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(out.event, MergeEvent::kRejected) << out.message;
+  EXPECT_FALSE(out.merged);
+  EXPECT_FALSE(merger.merged());
+}
+
+TEST(Merge, AContradictingUniqueMatchDropsTheMerge) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.5);
+  SyntheticCase c = MakeCase(building, truth, 0.0);
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  ASSERT_TRUE(merger.OnMatch(c.match, c.s.graph).merged);
+  c.match.bim_T_map = geometry::IsometryFromXYYaw(5.0, -2.0, 40.0 * kDeg, 0.0);  // 2 m away
+  const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(out.event, MergeEvent::kLost) << out.message;
+  EXPECT_FALSE(merger.merged());
+}
+
+TEST(Merge, AKidnappedRobotsGraphDropsTheMerge) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.5);
+  SyntheticCase c = MakeCase(building, truth, 0.0);
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  ASSERT_TRUE(merger.OnMatch(c.match, c.s.graph).merged);
+  // The second room (and what the robot sees in it) now lies 1.5 m off: what a robot carried
+  // elsewhere would map. Its pairs no longer fit the merge.
+  sgraph::SGraph moved = c.s.graph;
+  const Eigen::Isometry3d shift = geometry::IsometryFromXYYaw(1.5, 0.0, 0.0, 0.0);
+  sgraph::Room& room = moved.rooms.back();
+  room.center = shift * room.center;
+  for (auto& p : moved.planes)
+    if (std::count(room.planes.begin(), room.planes.end(), p.id)) p.plane = p.plane.Transformed(shift);
+  for (auto& k : moved.keyframes)
+    if (k.id == static_cast<int>(moved.keyframes.size()) - 1) k.pose = shift * k.pose;
+  const MergeOutput out = merger.OnSGraph(moved);
+  EXPECT_EQ(out.event, MergeEvent::kLost) << out.message;
+}
+
+TEST(Merge, MatchesForAnotherAGraphAreIgnored) {
+  const agraph::AGraph building = TwoRooms();
+  SyntheticCase c = MakeCase(building, Eigen::Isometry3d::Identity(), 0.0);
+  c.match.a_graph_sha256 = "not-this-one";
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(out.event, MergeEvent::kNone);
+  EXPECT_FALSE(out.merged);
+}
+
+TEST(MergeState, TracksTimeAndDistanceToLocalize) {
+  MergeState state;
+  EXPECT_EQ(state.state(), LocalizationState::kNotLocalized);
+  state.AddOdometry(10.0, Eigen::Vector3d(0, 0, 0));
+  state.AddOdometry(11.0, Eigen::Vector3d(3, 4, 0.1));
+  state.SetLocalized(15.0, "ok");
+  EXPECT_TRUE(state.localized());
+  EXPECT_DOUBLE_EQ(state.seconds_to_localize(), 5.0);
+  EXPECT_DOUBLE_EQ(state.distance_to_localize(), 5.0);
+  EXPECT_DOUBLE_EQ(state.localized_since(), 15.0);
+  state.AddOdometry(12.0, Eigen::Vector3d(3, 5, 0));
+  state.SetLocalized(16.0, "still");
+  EXPECT_DOUBLE_EQ(state.localized_since(), 15.0);
+  state.SetLost("contradicted");
+  EXPECT_EQ(state.state(), LocalizationState::kLost);
+  state.SetLocalized(20.0, "again");
+  EXPECT_DOUBLE_EQ(state.localized_since(), 20.0);
+  EXPECT_DOUBLE_EQ(state.distance_to_localize(), 5.0);  // the first localization's
+  state.Reset("new building");
+  EXPECT_EQ(state.state(), LocalizationState::kNotLocalized);
+  EXPECT_DOUBLE_EQ(state.distance_walked(), 0.0);
+}
+
+TEST(MergerConfig, ValidateNamesTheField) {
+  EXPECT_EQ(MergerConfig().Validate(), "");
+  MergerConfig c;
+  c.room_sigma = -1.0;
+  EXPECT_EQ(c.Validate().rfind("room_sigma", 0), 0u) << c.Validate();
+  c = MergerConfig();
+  c.min_inlier_fraction = 1.5;
+  EXPECT_EQ(c.Validate().rfind("min_inlier_fraction", 0), 0u);
+  c = MergerConfig();
+  c.max_iterations = 0;
+  EXPECT_EQ(c.Validate().rfind("max_iterations", 0), 0u);
+}
+
+}  // namespace
+}  // namespace merging
+}  // namespace is_graphs
