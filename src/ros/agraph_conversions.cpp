@@ -2,21 +2,11 @@
 
 #include <algorithm>
 
+#include "id_conversions.h"
 #include "point_conversions.h"
 
 namespace is_graphs {
 namespace ros_conversions {
-namespace {
-
-template <typename Out, typename In>
-std::vector<Out> CastIds(const std::vector<In>& ids) {
-  std::vector<Out> out(ids.size());
-  std::transform(ids.begin(), ids.end(), out.begin(), [](In id) { return static_cast<Out>(id); });
-  return out;
-}
-
-}  // namespace
-
 is_graphs::AGraph ToMsg(const agraph::AGraph& graph) {
   is_graphs::AGraph msg;
   msg.building = graph.building;

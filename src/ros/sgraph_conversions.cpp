@@ -2,22 +2,12 @@
 
 #include <algorithm>
 
+#include "id_conversions.h"
 #include "point_conversions.h"
 #include "pose_conversions.h"
 
 namespace is_graphs {
 namespace ros_conversions {
-namespace {
-
-template <typename Out, typename In>
-std::vector<Out> CastIds(const std::vector<In>& ids) {
-  std::vector<Out> out(ids.size());
-  std::transform(ids.begin(), ids.end(), out.begin(), [](In id) { return static_cast<Out>(id); });
-  return out;
-}
-
-}  // namespace
-
 is_graphs::SGraph ToMsg(const sgraph::SGraph& graph) {
   is_graphs::SGraph msg;
   msg.revision = graph.revision;

@@ -20,6 +20,7 @@
 #include "../../src/ros/cloud_conversions.h"
 #include "is_graphs/agraph/ifc_conversion.h"
 #include "is_graphs/geometry/triangle_mesh.h"
+#include "node_runner.h"
 
 namespace is_graphs {
 namespace {
@@ -147,19 +148,8 @@ TEST(RobotDescription, GivesBaseLinkToVelodyne) {
   EXPECT_NEAR(t.transform.rotation.w, 1.0, 1e-9);
 }
 
-/// Runs the real agraph_node binary against this test's roscore; returns exit code and output.
-/// Each call uses its own node name, so private parameters of one run never leak into another.
 std::pair<int, std::string> RunNode(const std::string& args) {
-  static int run = 0;
-  const std::string cmd = std::string(IS_GRAPHS_AGRAPH_NODE) + " __name:=bad_input_agraph_node_" +
-                          std::to_string(run++) + " " + args + " 2>&1";
-  std::string output;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return testing_support::RunNode(IS_GRAPHS_AGRAPH_NODE, "bad_input_agraph_node", args);
 }
 
 TEST(AGraphNodeBadInput, MissingFileIsAClearErrorAndExit) {

@@ -20,6 +20,7 @@
 
 #include "../../src/ros/pose_conversions.h"
 #include "is_graphs/geometry/se3.h"
+#include "node_runner.h"
 
 namespace is_graphs {
 namespace {
@@ -105,9 +106,9 @@ TEST_F(LocalizeTest, LocalizesBeforeTheBagEndsAndNeverPublishesBefore) {
   ASSERT_GT(poses_.size(), 50u) << "too few pose_bim after localization";
   const double bag_end = (truth_.rbegin()->first) * 1e-9;
   EXPECT_LT(since, bag_end);
-  std::printf("[ localize ] localized %.1f s after start, after %.1f m, at t = %.1f (bag end %.1f)\n",
-              first_localized_.seconds_to_localize, first_localized_.distance_to_localize, since,
-              bag_end);
+  std::printf(
+      "[ localize ] localized %.1f s after start, after %.1f m, at t = %.1f (bag end %.1f)\n",
+      first_localized_.seconds_to_localize, first_localized_.distance_to_localize, since, bag_end);
   for (int i = 0; i < 36; i += 7) EXPECT_GT(first_localized_.covariance[i], 0.0);
 }
 
@@ -132,8 +133,10 @@ TEST_F(LocalizeTest, PoseInTheBimMatchesGroundTruth) {
   ASSERT_GT(n, 50) << "pose_bim stamps do not meet ground truth stamps";
   const double rmse = std::sqrt(sum_sq / n);
   const double yaw_rmse_deg = std::sqrt(sum_yaw_sq / n) * 180.0 / M_PI;
-  std::printf("[ localize ] APE x,y: RMSE %.4f m, max %.4f m over %d poses; yaw RMSE %.3f deg, "
-              "max %.3f deg\n", rmse, max_xy, n, yaw_rmse_deg, max_yaw * 180.0 / M_PI);
+  std::printf(
+      "[ localize ] APE x,y: RMSE %.4f m, max %.4f m over %d poses; yaw RMSE %.3f deg, "
+      "max %.3f deg\n",
+      rmse, max_xy, n, yaw_rmse_deg, max_yaw * 180.0 / M_PI);
   EXPECT_LT(yaw_rmse_deg, kMaxYawRmseDeg);
   EXPECT_LT(rmse, kMaxApeXY);
   EXPECT_LT(max_yaw * 180.0 / M_PI, kMaxYawDeg);
@@ -142,16 +145,7 @@ TEST_F(LocalizeTest, PoseInTheBimMatchesGroundTruth) {
 TEST_F(LocalizeTest, BroadcastsBimToMap) { EXPECT_TRUE(tf_ok_) << tf_error_; }
 
 std::pair<int, std::string> RunNode(const std::string& args) {
-  static int run = 0;
-  const std::string cmd = std::string(IS_GRAPHS_MERGER_NODE) + " __name:=bad_merger_node_" +
-                          std::to_string(run++) + " " + args + " 2>&1";
-  std::string output;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return testing_support::RunNode(IS_GRAPHS_MERGER_NODE, "bad_merger_node", args);
 }
 
 TEST(MergerNodeBadInput, BadParameterIsNamedAndTheNodeExits) {

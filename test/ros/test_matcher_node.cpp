@@ -20,6 +20,7 @@
 #include "../../src/ros/sgraph_conversions.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/synthetic_sgraph.h"
+#include "node_runner.h"
 
 namespace is_graphs {
 namespace {
@@ -30,7 +31,8 @@ class MatcherNodeTest : public ::testing::Test {
     match_sub_ = nh_.subscribe("graph_match", 10, &MatcherNodeTest::OnMatch, this);
     marker_sub_ = nh_.subscribe("graph_match/markers", 10, &MatcherNodeTest::OnMarkers, this);
     s_pub_ = nh_.advertise<is_graphs::SGraph>("s_graph", 10);
-    const auto a = ros::topic::waitForMessage<is_graphs::AGraph>("a_graph", nh_, ros::Duration(180));
+    const auto a =
+        ros::topic::waitForMessage<is_graphs::AGraph>("a_graph", nh_, ros::Duration(180));
     ASSERT_TRUE(a) << "no a_graph within 180 s";
     a_graph_ = ros_conversions::FromMsg(*a);
     const ros::Time until = ros::Time::now() + ros::Duration(20);
@@ -149,16 +151,7 @@ TEST_F(MatcherNodeTest, UniqueAmbiguousAndMalformedSGraphs) {
 }
 
 std::pair<int, std::string> RunNode(const std::string& args) {
-  static int run = 0;
-  const std::string cmd = std::string(IS_GRAPHS_MATCHER_NODE) + " __name:=bad_param_matcher_" +
-                          std::to_string(run++) + " " + args + " 2>&1";
-  std::string output;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return testing_support::RunNode(IS_GRAPHS_MATCHER_NODE, "bad_param_matcher", args);
 }
 
 TEST(MatcherNodeBadInput, BadParameterIsNamedAndStopsTheNode) {

@@ -17,6 +17,7 @@
 #include "../../src/ros/sgraph_conversions.h"
 #include "is_graphs/agraph/ifc_conversion.h"
 #include "is_graphs/sgraph/evaluation.h"
+#include "node_runner.h"
 
 namespace is_graphs {
 namespace {
@@ -26,18 +27,21 @@ class SGraphNodeTest : public ::testing::Test {
   // Collects s_graph and ground truth until the bag has played (the graph stops growing).
   static void SetUpTestSuite() {
     ros::NodeHandle nh;
-    ros::Subscriber gs = nh.subscribe<is_graphs::SGraph>(
-        "s_graph", 10, boost::function<void(const is_graphs::SGraph::ConstPtr&)>([](const is_graphs::SGraph::ConstPtr& m) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      last_ = m;
-      ++count_;
-    }));
+    ros::Subscriber gs =
+        nh.subscribe<is_graphs::SGraph>("s_graph", 10,
+                                        boost::function<void(const is_graphs::SGraph::ConstPtr&)>(
+                                            [](const is_graphs::SGraph::ConstPtr& m) {
+                                              std::lock_guard<std::mutex> lock(mutex_);
+                                              last_ = m;
+                                              ++count_;
+                                            }));
     ros::Subscriber ts = nh.subscribe<geometry_msgs::PoseStamped>(
         "ground_truth/pose", 1000,
-        boost::function<void(const geometry_msgs::PoseStamped::ConstPtr&)>([](const geometry_msgs::PoseStamped::ConstPtr& m) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          truth_.push_back({m->header.stamp.toSec(), ros_conversions::FromPose(m->pose)});
-        }));
+        boost::function<void(const geometry_msgs::PoseStamped::ConstPtr&)>(
+            [](const geometry_msgs::PoseStamped::ConstPtr& m) {
+              std::lock_guard<std::mutex> lock(mutex_);
+              truth_.push_back({m->header.stamp.toSec(), ros_conversions::FromPose(m->pose)});
+            }));
     tf_ = new tf2_ros::Buffer(ros::Duration(60.0));
     listener_ = new tf2_ros::TransformListener(*tf_);
     const ros::WallTime start = ros::WallTime::now();
@@ -80,7 +84,8 @@ TEST_F(SGraphNodeTest, PublishesAGraphOnTheBuildingsWalls) {
   agraph::IfcConversionConfig config;
   ros::NodeHandle nh;
   nh.getParam("test_cache_dir", config.cache_dir);
-  const auto office = agraph::LoadBim(std::string(IS_GRAPHS_SOURCE_DIR) + "/bim/office.ifc", config);
+  const auto office =
+      agraph::LoadBim(std::string(IS_GRAPHS_SOURCE_DIR) + "/bim/office.ifc", config);
   ASSERT_TRUE(office.ok()) << office.error();
   const auto planes = sgraph::EvaluatePlanes(graph, office.value(), trajectory.bim_T_map, 200);
   ASSERT_GE(planes.size(), 3u);
@@ -104,16 +109,7 @@ TEST_F(SGraphNodeTest, BroadcastsMapToOdom) {
 }
 
 std::pair<int, std::string> RunNode(const std::string& args) {
-  static int run = 0;
-  const std::string cmd = std::string(IS_GRAPHS_SGRAPH_NODE) + " __name:=bad_sgraph_node_" +
-                          std::to_string(run++) + " " + args + " 2>&1";
-  std::string output;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  return testing_support::RunNode(IS_GRAPHS_SGRAPH_NODE, "bad_sgraph_node", args);
 }
 
 TEST(SGraphNodeBadInput, BadParameterIsNamedAndTheNodeExits) {
