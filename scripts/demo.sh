@@ -10,6 +10,9 @@ cd "$(dirname "$0")/.."
 root="$(pwd)"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 export ROS_HOME="${ROS_HOME:-${root}/.ws/ros_home}"
+# Everything here runs on this machine: advertise "localhost", not a host name that a bare
+# system (a minimal container or chroot) may not resolve. A user's ROS_HOSTNAME/ROS_IP wins.
+[ -n "${ROS_IP:-}" ] || export ROS_HOSTNAME="${ROS_HOSTNAME:-localhost}"
 scenario="${SCENARIO:-bags/D5_rotated.yaml}"
 rate="${RATE:-2}"
 rviz="${RVIZ:-false}"

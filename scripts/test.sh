@@ -7,6 +7,9 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 export ROS_HOME="${ROS_HOME:-$(pwd)/.ws/ros_home}"
+# Everything here runs on this machine: advertise "localhost", not a host name that a bare
+# system (a minimal container or chroot) may not resolve. A user's ROS_HOSTNAME/ROS_IP wins.
+[ -n "${ROS_IP:-}" ] || export ROS_HOSTNAME="${ROS_HOSTNAME:-localhost}"
 mkdir -p "${ROS_HOME}"
 rm -rf .ws/build/test_results
 # shellcheck disable=SC1091
