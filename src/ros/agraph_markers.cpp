@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "marker_helpers.h"
 #include "point_conversions.h"
 
 namespace is_graphs {
@@ -12,39 +13,21 @@ namespace {
 
 using visualization_msgs::Marker;
 
-std_msgs::ColorRGBA Color(float r, float g, float b, float a) {
-  std_msgs::ColorRGBA c;
-  c.r = r;
-  c.g = g;
-  c.b = b;
-  c.a = a;
-  return c;
-}
-
 using ros_conversions::ToPoint;
 
 std_msgs::ColorRGBA OrientationColor(geometry::Orientation o, float alpha) {
   switch (o) {
     case geometry::Orientation::kX:
-      return Color(0.9f, 0.3f, 0.3f, alpha);
+      return Rgba(0.9f, 0.3f, 0.3f, alpha);
     case geometry::Orientation::kY:
-      return Color(0.3f, 0.8f, 0.3f, alpha);
+      return Rgba(0.3f, 0.8f, 0.3f, alpha);
     default:
-      return Color(0.3f, 0.5f, 0.95f, alpha);
+      return Rgba(0.3f, 0.5f, 0.95f, alpha);
   }
 }
 
 Marker NewMarker(const AGraphMarkerStyle& style, const std::string& ns, int type, double scale) {
-  Marker m;
-  m.header.frame_id = style.frame_id;
-  m.ns = ns;
-  m.id = 0;
-  m.type = type;
-  m.action = Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = scale;
-  m.color = Color(1.f, 1.f, 1.f, 1.f);
-  return m;
+  return MakeMarker(style.frame_id, ns, type, scale, Rgba(1.f, 1.f, 1.f));
 }
 
 Eigen::Vector3d SurfaceCorner(const agraph::WallSurface& s, bool end, bool top) {
@@ -84,12 +67,12 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
       outlines.points.push_back(ToPoint(q));
     }
   }
-  outlines.color = Color(0.2f, 0.2f, 0.2f, 0.8f);
+  outlines.color = Rgba(0.2f, 0.2f, 0.2f, 0.8f);
 
   Marker walls = NewMarker(style, "walls", Marker::SPHERE_LIST, style.node_scale);
-  walls.color = Color(0.95f, 0.6f, 0.1f, 1.f);
+  walls.color = Rgba(0.95f, 0.6f, 0.1f, 1.f);
   Marker wall_edges = NewMarker(style, "wall_edges", Marker::LINE_LIST, style.line_width);
-  wall_edges.color = Color(0.95f, 0.6f, 0.1f, 0.6f);
+  wall_edges.color = Rgba(0.95f, 0.6f, 0.1f, 0.6f);
   for (const auto& w : graph.walls) {
     const Eigen::Vector3d c = lifted(w.center, wall_z);
     walls.points.push_back(ToPoint(c));
@@ -101,11 +84,11 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
   }
 
   Marker rooms = NewMarker(style, "rooms", Marker::SPHERE_LIST, 2.0 * style.node_scale);
-  rooms.color = Color(0.6f, 0.2f, 0.8f, 1.f);
+  rooms.color = Rgba(0.6f, 0.2f, 0.8f, 1.f);
   Marker room_outlines = NewMarker(style, "room_outlines", Marker::LINE_LIST, style.line_width);
-  room_outlines.color = Color(0.6f, 0.2f, 0.8f, 0.9f);
+  room_outlines.color = Rgba(0.6f, 0.2f, 0.8f, 0.9f);
   Marker room_edges = NewMarker(style, "room_edges", Marker::LINE_LIST, 0.5 * style.line_width);
-  room_edges.color = Color(0.6f, 0.2f, 0.8f, 0.4f);
+  room_edges.color = Rgba(0.6f, 0.2f, 0.8f, 0.4f);
   visualization_msgs::MarkerArray out;
   for (const auto& r : graph.rooms) {
     const Eigen::Vector3d c = lifted(r.center, room_z);
@@ -131,9 +114,9 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
   }
 
   Marker doorways = NewMarker(style, "doorways", Marker::CUBE_LIST, style.node_scale);
-  doorways.color = Color(0.1f, 0.75f, 0.85f, 1.f);
+  doorways.color = Rgba(0.1f, 0.75f, 0.85f, 1.f);
   Marker doorway_edges = NewMarker(style, "doorway_edges", Marker::LINE_LIST, style.line_width);
-  doorway_edges.color = Color(0.1f, 0.75f, 0.85f, 0.6f);
+  doorway_edges.color = Rgba(0.1f, 0.75f, 0.85f, 0.6f);
   for (const auto& d : graph.doorways) {
     const Eigen::Vector3d p = lifted(d.position, room_z);
     doorways.points.push_back(ToPoint(p));

@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "marker_helpers.h"
 #include "point_conversions.h"
 
 namespace is_graphs {
@@ -10,24 +11,9 @@ namespace {
 
 using ros_conversions::ToPoint;
 
-std_msgs::ColorRGBA Colour(float r, float g, float b, float a = 1.0f) {
-  std_msgs::ColorRGBA c;
-  c.r = r, c.g = g, c.b = b, c.a = a;
-  return c;
-}
-
-visualization_msgs::Marker Make(const GraphMatchMarkerStyle& style, const std::string& ns,
-                                int type, const std_msgs::ColorRGBA& colour, double scale) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = style.frame_id;
-  m.ns = ns;
-  m.id = 0;
-  m.type = type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = scale;
-  m.color = colour;
-  return m;
+visualization_msgs::Marker Make(const GraphMatchMarkerStyle& style, const std::string& ns, int type,
+                                const std_msgs::ColorRGBA& colour, double scale) {
+  return MakeMarker(style.frame_id, ns, type, scale, colour);
 }
 
 }  // namespace
@@ -43,7 +29,7 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
   array.markers.push_back(clear);
 
   const bool unique = match.status == matching::MatchStatus::kUnique;
-  const auto colour = unique ? Colour(0.1f, 0.9f, 0.2f) : Colour(1.0f, 0.6f, 0.0f);
+  const auto colour = unique ? Rgba(0.1f, 0.9f, 0.2f) : Rgba(1.0f, 0.6f, 0.0f);
   const Eigen::Isometry3d& t = match.bim_T_map;
   const Eigen::Vector3d lift(0.0, 0.0, style.s_graph_lift);
   std::map<int, const sgraph::Room*> s_rooms;
@@ -66,7 +52,7 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
   }
 
   auto surfaces = Make(style, "surface_pairs", visualization_msgs::Marker::LINE_LIST,
-                       Colour(colour.r, colour.g, colour.b, 0.6f), style.line_width);
+                       Rgba(colour.r, colour.g, colour.b, 0.6f), style.line_width);
   for (const auto& p : match.surface_pairs) {
     const auto s = s_planes.find(p.s_id);
     if (p.a_id < 0 || p.a_id >= static_cast<int>(a_graph.surfaces.size()) || s == s_planes.end())
@@ -84,7 +70,8 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
 
   auto text = Make(style, "status", visualization_msgs::Marker::TEXT_VIEW_FACING, colour, 0.8);
   Eigen::Vector3d text_at = Eigen::Vector3d::Zero();
-  for (const auto& r : a_graph.rooms) text_at += r.center / std::max<size_t>(1, a_graph.rooms.size());
+  for (const auto& r : a_graph.rooms)
+    text_at += r.center / std::max<size_t>(1, a_graph.rooms.size());
   text.pose.position = ToPoint(text_at + lift + Eigen::Vector3d(0, 0, 2.0));
   text.text = std::string(matching::ToString(match.status)) + " (" +
               std::to_string(match.hypotheses) + " hypotheses, S-Graph rev " +

@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "marker_helpers.h"
 #include "point_conversions.h"
 
 namespace is_graphs {
@@ -12,19 +13,7 @@ using ros_conversions::ToPoint;
 
 visualization_msgs::Marker Make(const MergerMarkerStyle& style, const std::string& ns, int type,
                                 double scale, float r, float g, float b) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = style.frame_id;
-  m.ns = ns;
-  m.id = 0;
-  m.type = type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = scale;
-  m.color.r = r;
-  m.color.g = g;
-  m.color.b = b;
-  m.color.a = 0.9f;
-  return m;
+  return MakeMarker(style.frame_id, ns, type, scale, Rgba(r, g, b, 0.9f));
 }
 
 Eigen::Vector3d Mid(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double z) {

@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "marker_helpers.h"
 #include "point_conversions.h"
 
 namespace is_graphs {
@@ -12,29 +13,25 @@ using visualization_msgs::Marker;
 
 Marker MakeMarker(const SGraphMarkerStyle& style, const std::string& ns, int type, double scale,
                   float r, float g, float b, float a = 1.0f) {
-  Marker m;
-  m.header.frame_id = style.frame_id;
-  m.ns = ns;
-  m.id = 0;
-  m.type = type;
-  m.action = Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = scale;
-  m.color.r = r;
-  m.color.g = g;
-  m.color.b = b;
-  m.color.a = a;
-  return m;
+  return ros_markers::MakeMarker(style.frame_id, ns, type, scale, Rgba(r, g, b, a));
 }
 
 std_msgs::ColorRGBA PlaneColor(geometry::Orientation o) {
   std_msgs::ColorRGBA c;
   c.a = 0.5f;
   switch (o) {
-    case geometry::Orientation::kX: c.r = 0.9f, c.g = 0.3f, c.b = 0.3f; break;
-    case geometry::Orientation::kY: c.r = 0.3f, c.g = 0.5f, c.b = 0.95f; break;
-    case geometry::Orientation::kHorizontal: c.r = 0.6f, c.g = 0.6f, c.b = 0.6f, c.a = 0.2f; break;
-    default: c.r = 0.95f, c.g = 0.75f, c.b = 0.2f; break;
+    case geometry::Orientation::kX:
+      c.r = 0.9f, c.g = 0.3f, c.b = 0.3f;
+      break;
+    case geometry::Orientation::kY:
+      c.r = 0.3f, c.g = 0.5f, c.b = 0.95f;
+      break;
+    case geometry::Orientation::kHorizontal:
+      c.r = 0.6f, c.g = 0.6f, c.b = 0.6f, c.a = 0.2f;
+      break;
+    default:
+      c.r = 0.95f, c.g = 0.75f, c.b = 0.2f;
+      break;
   }
   return c;
 }
@@ -54,8 +51,10 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
   const double room_layer = plane_layer + style.layer_spacing;
   const double floor_layer = room_layer + style.layer_spacing;
 
-  Marker keyframes = MakeMarker(style, "keyframes", Marker::SPHERE_LIST, style.node_scale, 0.2f, 0.9f, 0.3f);
-  Marker odom = MakeMarker(style, "odometry_edges", Marker::LINE_STRIP, style.line_width, 0.2f, 0.9f, 0.3f);
+  Marker keyframes =
+      MakeMarker(style, "keyframes", Marker::SPHERE_LIST, style.node_scale, 0.2f, 0.9f, 0.3f);
+  Marker odom =
+      MakeMarker(style, "odometry_edges", Marker::LINE_STRIP, style.line_width, 0.2f, 0.9f, 0.3f);
   std::map<int, Eigen::Vector3d> keyframe_at;
   for (const auto& k : graph.keyframes) {
     keyframe_at[k.id] = k.pose.translation();
@@ -63,14 +62,16 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
     odom.points.push_back(ToPoint(k.pose.translation()));
   }
   Marker planes = MakeMarker(style, "planes", Marker::TRIANGLE_LIST, 1.0, 1, 1, 1);
-  Marker plane_nodes = MakeMarker(style, "plane_nodes", Marker::SPHERE_LIST, style.node_scale, 0.95f, 0.6f, 0.1f);
+  Marker plane_nodes =
+      MakeMarker(style, "plane_nodes", Marker::SPHERE_LIST, style.node_scale, 0.95f, 0.6f, 0.1f);
   std::map<int, Eigen::Vector3d> plane_node_at;
   for (const auto& p : graph.planes) {
     if (p.orientation == geometry::Orientation::kHorizontal) continue;
     const Eigen::Vector3d a(p.start.x(), p.start.y(), p.z_min), b(p.end.x(), p.end.y(), p.z_min);
     const Eigen::Vector3d up(0, 0, std::max(p.z_max - p.z_min, 0.05));
     const auto c = PlaneColor(p.orientation);
-    for (const Eigen::Vector3d& v : {a, b, Eigen::Vector3d(b + up), a, Eigen::Vector3d(b + up), Eigen::Vector3d(a + up)}) {
+    for (const Eigen::Vector3d& v :
+         {a, b, Eigen::Vector3d(b + up), a, Eigen::Vector3d(b + up), Eigen::Vector3d(a + up)}) {
       planes.points.push_back(ToPoint(v));
       planes.colors.push_back(c);
     }
@@ -79,7 +80,8 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
     plane_node_at[p.id] = node;
     plane_nodes.points.push_back(ToPoint(node));
   }
-  Marker observations = MakeMarker(style, "observation_edges", Marker::LINE_LIST, style.line_width * 0.5, 0.6f, 0.6f, 0.6f, 0.4f);
+  Marker observations = MakeMarker(style, "observation_edges", Marker::LINE_LIST,
+                                   style.line_width * 0.5, 0.6f, 0.6f, 0.6f, 0.4f);
   for (const auto& o : graph.observations) {
     auto k = keyframe_at.find(o.keyframe);
     auto p = plane_node_at.find(o.plane);
@@ -87,9 +89,12 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
     observations.points.push_back(ToPoint(k->second));
     observations.points.push_back(ToPoint(p->second));
   }
-  Marker rooms = MakeMarker(style, "rooms", Marker::SPHERE_LIST, 2.0 * style.node_scale, 0.8f, 0.2f, 0.9f);
-  Marker corridors = MakeMarker(style, "corridors", Marker::SPHERE_LIST, 2.0 * style.node_scale, 0.2f, 0.8f, 0.9f);
-  Marker room_edges = MakeMarker(style, "room_edges", Marker::LINE_LIST, style.line_width, 0.8f, 0.2f, 0.9f, 0.7f);
+  Marker rooms =
+      MakeMarker(style, "rooms", Marker::SPHERE_LIST, 2.0 * style.node_scale, 0.8f, 0.2f, 0.9f);
+  Marker corridors =
+      MakeMarker(style, "corridors", Marker::SPHERE_LIST, 2.0 * style.node_scale, 0.2f, 0.8f, 0.9f);
+  Marker room_edges =
+      MakeMarker(style, "room_edges", Marker::LINE_LIST, style.line_width, 0.8f, 0.2f, 0.9f, 0.7f);
   std::map<int, Eigen::Vector3d> room_at;
   for (const auto& r : graph.rooms) {
     const Eigen::Vector3d c(r.center.x(), r.center.y(), room_layer);
@@ -102,8 +107,10 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
       room_edges.points.push_back(ToPoint(p->second));
     }
   }
-  Marker floor = MakeMarker(style, "floor", Marker::SPHERE_LIST, 3.0 * style.node_scale, 0.9f, 0.9f, 0.9f);
-  Marker floor_edges = MakeMarker(style, "floor_edges", Marker::LINE_LIST, style.line_width, 0.9f, 0.9f, 0.9f, 0.7f);
+  Marker floor =
+      MakeMarker(style, "floor", Marker::SPHERE_LIST, 3.0 * style.node_scale, 0.9f, 0.9f, 0.9f);
+  Marker floor_edges =
+      MakeMarker(style, "floor_edges", Marker::LINE_LIST, style.line_width, 0.9f, 0.9f, 0.9f, 0.7f);
   for (const auto& f : graph.floors) {
     const Eigen::Vector3d c(f.center.x(), f.center.y(), floor_layer);
     floor.points.push_back(ToPoint(c));

@@ -39,8 +39,8 @@ struct PairResidual {
 /// every match pair's residual.
 struct MergeSolution {
   bool usable{false};
-  Eigen::Vector3d bim_x_map{Eigen::Vector3d::Zero()};  // x, y, yaw
-  double z{0.0};                                       // height of M in B (not estimated)
+  Eigen::Vector3d bim_x_map{Eigen::Vector3d::Zero()};       // x, y, yaw
+  double z{0.0};                                            // height of M in B (not estimated)
   Eigen::Matrix3d covariance{Eigen::Matrix3d::Identity()};  // of (x, y, yaw)
   bool covariance_ok{false};
   std::map<int, Eigen::Isometry3d> keyframes;  // id -> optimized pose in M
@@ -71,10 +71,6 @@ struct MergeSolution {
 MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_graph,
                          const MatchPairs& pairs, const Eigen::Vector3d& initial,
                          const Eigen::Vector3d& prior, double z, const MergerConfig& config);
-
-/// The direction across an S-corridor in M (its first plane's horizontal normal), or nullopt-like
-/// zero when the corridor has no plane in the graph.
-Eigen::Vector2d CorridorAcross(const sgraph::SGraph& s_graph, const sgraph::Room& room);
 
 }  // namespace merging
 }  // namespace is_graphs

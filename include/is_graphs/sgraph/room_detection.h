@@ -25,8 +25,8 @@ struct RoomCandidate {
   RoomType type{RoomType::kRoom};
   bool rectangular{false};  // the paper's four-wall room (two opposed pairs)
   Eigen::Vector2d center{Eigen::Vector2d::Zero()};
-  std::vector<int> walls;          // Wall2D ids
-  std::vector<double> distances;   // n·center − d per wall (> 0: the centre is in front)
+  std::vector<int> walls;         // Wall2D ids
+  std::vector<double> distances;  // n·center − d per wall (> 0: the centre is in front)
   Eigen::Vector2d axis{Eigen::Vector2d::Zero()};  // corridors: the direction along it
 };
 
@@ -34,12 +34,15 @@ struct RoomCandidate {
 /// by `room_gap_margin` at both ends (doorways, unseen corners).
 struct RayFan {
   std::vector<Eigen::Vector2d> directions;
-  std::vector<int> hit;        // index into the walls, −1: nothing within room_max_range
+  std::vector<int> hit;  // index into the walls, −1: nothing within room_max_range
   std::vector<double> range;
 };
 
 RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
                 const FrontendConfig& config);
+
+/// How many rays of the fan hit each wall (indexed like the walls).
+std::vector<int> CountHits(const RayFan& fan, size_t num_walls);
 
 /// A closed room around `position`: (almost) every ray hits a wall that faces it and covers a
 /// noticeable sector (stray hits through doorways do not count). Two opposed pairs of walls

@@ -11,9 +11,7 @@ std::optional<RoomCandidate> DetectCorridor(const std::vector<Wall2D>& walls,
                                             const FrontendConfig& config) {
   const int n = static_cast<int>(fan.hit.size());
   if (n == 0) return std::nullopt;
-  std::vector<int> count(walls.size(), 0);
-  for (int h : fan.hit)
-    if (h >= 0) ++count[h];
+  const std::vector<int> count = CountHits(fan, walls.size());
   const double escape_cos = std::cos(35.0 * M_PI / 180.0);
   std::optional<RoomCandidate> best;
   double best_coverage = 0.0;

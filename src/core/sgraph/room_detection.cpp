@@ -68,14 +68,19 @@ RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& positio
   return fan;
 }
 
+std::vector<int> CountHits(const RayFan& fan, size_t num_walls) {
+  std::vector<int> count(num_walls, 0);
+  for (int h : fan.hit)
+    if (h >= 0) ++count[h];
+  return count;
+}
+
 std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
                                         const Eigen::Vector2d& position, const RayFan& fan,
                                         const FrontendConfig& config) {
   const int n = static_cast<int>(fan.hit.size());
   if (n == 0) return std::nullopt;
-  std::vector<int> count(walls.size(), 0);
-  for (int h : fan.hit)
-    if (h >= 0) ++count[h];
+  const std::vector<int> count = CountHits(fan, walls.size());
   const int significant = std::max(3, n / 50);
   int gaps = 0;
   for (int h : fan.hit)
