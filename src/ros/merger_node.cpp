@@ -81,12 +81,14 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "status_rate", p.status_rate);
   Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
   p.markers.frame_id = p.bim_frame;
-  for (const auto& [name, value] : {std::pair<const char*, const std::string*>{"bim_frame", &p.bim_frame},
-                                    {"map_frame", &p.map_frame}, {"odom_frame", &p.odom_frame}})
+  for (const auto& [name, value] :
+       {std::pair<const char*, const std::string*>{"bim_frame", &p.bim_frame},
+        {"map_frame", &p.map_frame},
+        {"odom_frame", &p.odom_frame}})
     if (value->empty())
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must not be empty");
-  for (const auto& [name, value] : {std::pair<const char*, double>{"match_wait", p.match_wait},
-                                    {"status_rate", p.status_rate}})
+  for (const auto& [name, value] :
+       {std::pair<const char*, double>{"match_wait", p.match_wait}, {"status_rate", p.status_rate}})
     if (!(value > 0.0))
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
   const std::string error = c.Validate();
@@ -126,8 +128,11 @@ boost::array<double, 36> PoseCovariance(const Eigen::Matrix3d& xi_covariance,
 class MergerNode {
  public:
   MergerNode(ros::NodeHandle& nh, const MergerNodeParams& params)
-      : params_(params), merger_(params.merger), tf_buffer_(ros::Duration(30.0)),
-        tf_listener_(tf_buffer_), tf_(tf_buffer_) {
+      : params_(params),
+        merger_(params.merger),
+        tf_buffer_(ros::Duration(30.0)),
+        tf_listener_(tf_buffer_),
+        tf_(tf_buffer_) {
     pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("pose_bim", 10);
     status_pub_ = nh.advertise<is_graphs::LocalizationStatus>("localization_status", 1, true);
     is_graph_pub_ = nh.advertise<is_graphs::ISGraph>("is_graph", 1, true);
@@ -162,8 +167,10 @@ class MergerNode {
   void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (latest_s_ && msg->revision < latest_s_->revision) {
-      ROS_WARN("merger_node: S-Graph revision went back from %u to %u (sgraph_node restarted?): "
-               "merge reset, matching again", latest_s_->revision, msg->revision);
+      ROS_WARN(
+          "merger_node: S-Graph revision went back from %u to %u (sgraph_node restarted?): "
+          "merge reset, matching again",
+          latest_s_->revision, msg->revision);
       ResetLocked("the S-Graph restarted");
     }
     latest_s_ = msg;
@@ -196,32 +203,38 @@ class MergerNode {
     const Eigen::Isometry3d odom_T_base = ros_conversions::FromPose(msg->pose.pose);
     state_.AddOdometry(stamp.toSec(), odom_T_base.translation());
     if (!localized_) return;
+    const Eigen::Isometry3d bim_T_odom = bim_T_odom_;
     const Eigen::Isometry3d bim_T_map = bim_T_map_;
     const Eigen::Matrix3d covariance = covariance_;
     lock.unlock();
 
-    auto map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, stamp);
-    if (!map_T_odom.ok()) map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, ros::Time(0));
-    if (!map_T_odom.ok()) {  // a tf gap: no pose rather than a guessed one
-      ROS_WARN_THROTTLE(2.0, "merger_node: %s: pose_bim not published", map_T_odom.error().c_str());
-      return;
-    }
-    const Eigen::Isometry3d map_T_base = map_T_odom.value() * odom_T_base;
+    // The pose: the merged revision's B <- odom and this odometry reading (no tf needed).
+    const Eigen::Isometry3d bim_T_base = bim_T_odom * odom_T_base;
     geometry_msgs::PoseWithCovarianceStamped pose;
     pose.header.stamp = stamp;
     pose.header.frame_id = params_.bim_frame;
-    pose.pose.pose = ros_conversions::ToPose(bim_T_map * map_T_base);
-    pose.pose.covariance =
-        PoseCovariance(covariance, bim_T_map, map_T_base.translation(), params_.merger);
+    pose.pose.pose = ros_conversions::ToPose(bim_T_base);
+    pose.pose.covariance = PoseCovariance(
+        covariance, bim_T_map, bim_T_map.inverse() * bim_T_base.translation(), params_.merger);
     pose_pub_.publish(pose);
-    if (stamp > last_tf_stamp_) {  // tf2 rejects repeated stamps
-      last_tf_stamp_ = stamp;
-      geometry_msgs::TransformStamped t = tf2::eigenToTransform(bim_T_map);
-      t.header.stamp = stamp;
-      t.header.frame_id = params_.bim_frame;
-      t.child_frame_id = params_.map_frame;
-      tf_broadcaster_.sendTransform(t);
+    // tf bim -> map, such that bim -> map -> odom (the S-Graph's newest) -> base_link is that pose.
+    if (stamp <= last_tf_stamp_) return;  // tf2 rejects repeated stamps
+    auto map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, stamp);
+    if (!map_T_odom.ok())
+      map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, ros::Time(0));
+    if (!map_T_odom.ok()) {  // a tf gap: the pose holds, the tf waits
+      ROS_WARN_THROTTLE(2.0, "merger_node: %s: tf %s -> %s not published",
+                        map_T_odom.error().c_str(), params_.bim_frame.c_str(),
+                        params_.map_frame.c_str());
+      return;
     }
+    last_tf_stamp_ = stamp;
+    geometry_msgs::TransformStamped t =
+        tf2::eigenToTransform(bim_T_odom * map_T_odom.value().inverse());
+    t.header.stamp = stamp;
+    t.header.frame_id = params_.bim_frame;
+    t.child_frame_id = params_.map_frame;
+    tf_broadcaster_.sendTransform(t);
   }
 
   // --- state (mutex_ held) ---
@@ -239,12 +252,14 @@ class MergerNode {
       msg.header.stamp = ros::Time::now();
       msg.header.frame_id = params_.bim_frame;
       msg.state = static_cast<uint8_t>(state_.state());
-      if (state_.localized()) msg.localized_since = ros::Time(std::max(state_.localized_since(), 0.0));
+      if (state_.localized())
+        msg.localized_since = ros::Time(std::max(state_.localized_since(), 0.0));
       msg.seconds_to_localize = state_.seconds_to_localize();
       msg.distance_to_localize = state_.distance_to_localize();
       msg.message = state_.message();
       if (state_.localized())
-        msg.covariance = PoseCovariance(covariance_, bim_T_map_, Eigen::Vector3d::Zero(), params_.merger);
+        msg.covariance =
+            PoseCovariance(covariance_, bim_T_map_, Eigen::Vector3d::Zero(), params_.merger);
       status_dirty_ = false;
     }
     status_pub_.publish(msg);
@@ -270,8 +285,10 @@ class MergerNode {
           if (latest_s_ && pending_match_->s_graph_revision <= seen) {
             match_msg.swap(pending_match_);
           } else if ((ros::WallTime::now() - pending_match_since_).toSec() > params_.match_wait) {
-            ROS_WARN("merger_node: graph_match for S-Graph revision %u, newer than any seen (%u): "
-                     "ignored", pending_match_->s_graph_revision, seen);
+            ROS_WARN(
+                "merger_node: graph_match for S-Graph revision %u, newer than any seen (%u): "
+                "ignored",
+                pending_match_->s_graph_revision, seen);
             pending_match_.reset();
           }
         }
@@ -285,9 +302,10 @@ class MergerNode {
         last_match_ = match_msg;
         const matching::GraphMatch match = ros_conversions::FromMsg(*match_msg);
         if (match.a_graph_sha256 != merger_.a_graph_sha256()) {
-          ROS_WARN_THROTTLE(5.0, "merger_node: graph_match for an A-Graph not loaded here "
-                            "(sha256 %s, have %s): ignored", match.a_graph_sha256.c_str(),
-                            merger_.a_graph_sha256().c_str());
+          ROS_WARN_THROTTLE(5.0,
+                            "merger_node: graph_match for an A-Graph not loaded here "
+                            "(sha256 %s, have %s): ignored",
+                            match.a_graph_sha256.c_str(), merger_.a_graph_sha256().c_str());
           continue;
         }
         Apply(merger_.OnMatch(match, ros_conversions::FromMsg(*s_msg)), *s_msg);
@@ -298,7 +316,8 @@ class MergerNode {
   }
 
   void SetAGraph(const is_graphs::AGraph::ConstPtr& msg) {
-    if (merger_.HasAGraph() && msg->source_sha256 == merger_.a_graph_sha256()) return;  // re-latched
+    if (merger_.HasAGraph() && msg->source_sha256 == merger_.a_graph_sha256())
+      return;  // re-latched
     const bool had = merger_.HasAGraph();
     const std::string error = merger_.SetAGraph(ros_conversions::FromMsg(*msg));
     a_msg_ = msg;
@@ -310,8 +329,11 @@ class MergerNode {
       state_.Reset("the building changed; waiting for a unique match");
       status_dirty_ = true;
     }
-    if (!error.empty()) ROS_ERROR("merger_node: unusable A-Graph: %s", error.c_str());
-    else ROS_INFO("merger_node: A-Graph '%s' with %zu rooms", msg->building.c_str(), msg->rooms.size());
+    if (!error.empty())
+      ROS_ERROR("merger_node: unusable A-Graph: %s", error.c_str());
+    else
+      ROS_INFO("merger_node: A-Graph '%s' with %zu rooms", msg->building.c_str(),
+               msg->rooms.size());
   }
 
   void Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg) {
@@ -319,17 +341,25 @@ class MergerNode {
     const auto& sol = out.solution;
     const Eigen::Vector3d xi = geometry::ToXYYaw(out.bim_T_map);
     switch (out.event) {
-      case MergeEvent::kNone: return;
-      case MergeEvent::kRejected: ROS_WARN("merger_node: %s", out.message.c_str()); break;
-      case MergeEvent::kLost: ROS_WARN("merger_node: LOST: %s", out.message.c_str()); break;
+      case MergeEvent::kNone:
+        return;
+      case MergeEvent::kRejected:
+        ROS_WARN("merger_node: %s", out.message.c_str());
+        break;
+      case MergeEvent::kLost:
+        ROS_WARN("merger_node: LOST: %s", out.message.c_str());
+        break;
       case MergeEvent::kLocalized:
-        ROS_INFO("merger_node: LOCALIZED at S-Graph rev %u: B_x_M = (%.3f m, %.3f m, %.2f deg), "
-                 "%s, %d iterations, %.1f ms", s_msg.revision, xi.x(), xi.y(), xi.z() * 180 / M_PI,
-                 out.message.c_str(), sol.iterations, sol.seconds * 1e3);
+        ROS_INFO(
+            "merger_node: LOCALIZED at S-Graph rev %u: B_x_M = (%.3f m, %.3f m, %.2f deg), "
+            "%s, %d iterations, %.1f ms",
+            s_msg.revision, xi.x(), xi.y(), xi.z() * 180 / M_PI, out.message.c_str(),
+            sol.iterations, sol.seconds * 1e3);
         break;
       case MergeEvent::kUpdated:
-        ROS_DEBUG("merger_node: rev %u: B_x_M = (%.3f, %.3f, %.2f deg), %s, %.1f ms", s_msg.revision,
-                  xi.x(), xi.y(), xi.z() * 180 / M_PI, out.message.c_str(), sol.seconds * 1e3);
+        ROS_DEBUG("merger_node: rev %u: B_x_M = (%.3f, %.3f, %.2f deg), %s, %.1f ms",
+                  s_msg.revision, xi.x(), xi.y(), xi.z() * 180 / M_PI, out.message.c_str(),
+                  sol.seconds * 1e3);
         break;
     }
     bool publish_status = false;
@@ -339,7 +369,8 @@ class MergerNode {
       const double stamp = s_msg.header.stamp.toSec();
       if (out.merged) {
         localized_ = true;
-        bim_T_map_ = out.bim_T_map_corrected;
+        bim_T_map_ = out.bim_T_map;
+        bim_T_odom_ = out.bim_T_odom;
         covariance_ = out.covariance;
         if (!state_.localized() || out.event == MergeEvent::kLocalized) {
           state_.SetLocalized(stamp, "localized: " + out.message);
@@ -365,16 +396,17 @@ class MergerNode {
       is_graph_pub_.publish(msg);
     }
     if (marker_pub_.getNumSubscribers() > 0) {
-      auto markers = ros_markers::BuildMergerMarkers(merger_.a_graph(), ros_conversions::FromMsg(s_msg),
-                                                     merger_.pairs(), out.bim_T_map, params_.markers);
+      auto markers =
+          ros_markers::BuildMergerMarkers(merger_.a_graph(), ros_conversions::FromMsg(s_msg),
+                                          merger_.pairs(), out.bim_T_map, params_.markers);
       for (auto& m : markers.markers) m.header.stamp = s_msg.header.stamp;
       marker_pub_.publish(markers);
     }
   }
 
   MergerNodeParams params_;
-  merging::Merger merger_;  // the worker's
-  is_graphs::AGraph::ConstPtr a_msg_;         // the worker's
+  merging::Merger merger_;                      // the worker's
+  is_graphs::AGraph::ConstPtr a_msg_;           // the worker's
   is_graphs::GraphMatch::ConstPtr last_match_;  // the worker's
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
@@ -396,6 +428,7 @@ class MergerNode {
   bool localized_{false};
   bool status_dirty_{false};
   Eigen::Isometry3d bim_T_map_{Eigen::Isometry3d::Identity()};
+  Eigen::Isometry3d bim_T_odom_{Eigen::Isometry3d::Identity()};
   Eigen::Matrix3d covariance_{Eigen::Matrix3d::Identity()};
   merging::MergeState state_;
   ros::Time last_odom_stamp_;

@@ -87,6 +87,7 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "association_min_sigma_d", f.association_min_sigma_d);
   Read(pnh, "association_min_sigma_angle_deg", f.association_min_sigma_angle_deg);
   Read(pnh, "association_max_gap", f.association_max_gap);
+  Read(pnh, "association_coplanar_tolerance", f.association_coplanar_tolerance);
   Read(pnh, "detect_rooms", f.detect_rooms);
   Read(pnh, "room_max_range", f.room_max_range);
   Read(pnh, "room_min_width", f.room_min_width);
@@ -94,6 +95,8 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "corridor_max_width", f.corridor_max_width);
   Read(pnh, "room_gap_margin", f.room_gap_margin);
   Read(pnh, "room_rays", f.room_rays);
+  Read(pnh, "room_rectangle_share", f.room_rectangle_share);
+  Read(pnh, "room_max_opening", f.room_max_opening);
   auto& b = p.backend;
   Read(pnh, "max_iterations", b.max_iterations);
   Read(pnh, "max_solver_time", b.max_solver_time);

@@ -75,9 +75,9 @@ SyntheticCase MakeCase(const agraph::AGraph& building, const Eigen::Isometry3d& 
   for (const auto& [s, a] : c.s.room_truth) c.match.room_pairs.push_back({a, s, 1.0});
   for (const auto& [s, a] : c.s.plane_truth) c.match.surface_pairs.push_back({a, s, 1.0});
   // The matcher's guess: off by 0.2 m and 2°.
-  c.match.bim_T_map = geometry::IsometryFromXYYaw(
-      bim_T_map.translation().x() + 0.2, bim_T_map.translation().y() - 0.1,
-      geometry::Yaw(bim_T_map) + 2.0 * kDeg, 0.0);
+  c.match.bim_T_map = geometry::IsometryFromXYYaw(bim_T_map.translation().x() + 0.2,
+                                                  bim_T_map.translation().y() - 0.1,
+                                                  geometry::Yaw(bim_T_map) + 2.0 * kDeg, 0.0);
   return c;
 }
 
@@ -113,8 +113,10 @@ TEST(Merge, RecoversAKnownTransformExactly) {
   EXPECT_LT(std::sqrt(out.covariance(0, 0)), 0.05);
   EXPECT_LT(std::sqrt(out.covariance(2, 2)) / kDeg, 1.0);
   EXPECT_TRUE(out.consistency.consistent) << out.consistency.message;
-  // With no drift, the BIM's correction of the S-Graph is nil.
-  EXPECT_LT((out.bim_T_map_corrected.matrix() - out.bim_T_map.matrix()).norm(), 1e-3);
+  // With no drift, B <- odom puts the newest keyframe's odometry pose where B_x_M puts it.
+  const sgraph::Keyframe& newest = c.s.graph.keyframes.back();
+  EXPECT_LT(((out.bim_T_odom * newest.odom_pose).matrix() - (truth * newest.pose).matrix()).norm(),
+            1e-3);
   // The next revision keeps the merge.
   const MergeOutput again = merger.OnSGraph(c.s.graph);
   EXPECT_EQ(again.event, MergeEvent::kUpdated) << again.message;
@@ -168,8 +170,7 @@ TEST(Merge, AWrongMatchIsRejected) {
   // Swap the rooms, and pair every plane with a surface of the other room.
   std::swap(c.match.room_pairs[0].a_id, c.match.room_pairs[1].a_id);
   std::mt19937 rng(3);
-  for (auto& p : c.match.surface_pairs)
-    p.a_id = static_cast<int>(rng() % building.surfaces.size());
+  for (auto& p : c.match.surface_pairs) p.a_id = static_cast<int>(rng() % building.surfaces.size());
   Merger merger{MergerConfig()};
   ASSERT_EQ(merger.SetAGraph(building), "");
   const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
@@ -205,11 +206,29 @@ TEST(Merge, AKidnappedRobotsGraphDropsTheMerge) {
   sgraph::Room& room = moved.rooms.back();
   room.center = shift * room.center;
   for (auto& p : moved.planes)
-    if (std::count(room.planes.begin(), room.planes.end(), p.id)) p.plane = p.plane.Transformed(shift);
+    if (std::count(room.planes.begin(), room.planes.end(), p.id))
+      p.plane = p.plane.Transformed(shift);
   for (auto& k : moved.keyframes)
     if (k.id == static_cast<int>(moved.keyframes.size()) - 1) k.pose = shift * k.pose;
   const MergeOutput out = merger.OnSGraph(moved);
   EXPECT_EQ(out.event, MergeEvent::kLost) << out.message;
+}
+
+TEST(Merge, BimToOdomFollowsTheOdometryFrameOfTheMergedRevision) {
+  // The odometry frame is offset from M (the S-Graph corrected drift): B <- odom must put each
+  // keyframe's odometry pose where B_x_M puts its pose in M, whatever map -> odom is.
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(-1.0, 4.0, -70.0 * kDeg, 0.0);
+  SyntheticCase c = MakeCase(building, truth, 0.0);
+  const Eigen::Isometry3d odom_T_map = geometry::IsometryFromXYYaw(0.7, -0.3, 3.0 * kDeg, 0.0);
+  for (auto& k : c.s.graph.keyframes) k.odom_pose = odom_T_map * k.pose;
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+  ASSERT_TRUE(out.merged) << out.message;
+  for (const auto& k : c.s.graph.keyframes)
+    EXPECT_LT(((out.bim_T_odom * k.odom_pose).matrix() - (truth * k.pose).matrix()).norm(), 2e-3)
+        << "keyframe " << k.id;
 }
 
 TEST(Merge, MatchesForAnotherAGraphAreIgnored) {

@@ -28,9 +28,11 @@ struct MergeOutput {
   MergeEvent event{MergeEvent::kNone};
   bool merged{false};  // a pose may be published
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // B_x_M (gravity-aligned)
-  /// B_x_M composed with the BIM's correction of the S-Graph at its newest keyframe: maps the
-  /// robot's current pose in M (map <- odom <- base_link, as tf has it) into B.
-  Eigen::Isometry3d bim_T_map_corrected{Eigen::Isometry3d::Identity()};
+  /// B <- odom for the S-Graph revision merged: B_x_M composed with the merged (BIM-corrected)
+  /// pose of the newest keyframe and that keyframe's odometry, so that B <- base_link is
+  /// bim_T_odom * odom_T_base for any later odometry reading. Anchored on the revision's own
+  /// keyframe, it does not depend on the map -> odom of a newer revision.
+  Eigen::Isometry3d bim_T_odom{Eigen::Isometry3d::Identity()};
   Eigen::Matrix3d covariance{Eigen::Matrix3d::Identity()};  // of (x, y, yaw)
   MergeSolution solution;
   ConsistencyReport consistency;

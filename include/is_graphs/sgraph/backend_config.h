@@ -7,14 +7,14 @@ namespace sgraph {
 
 /// Back end: the Ceres problem over keyframes, planes, rooms, corridors and the floor.
 struct BackendConfig {
-  int max_iterations{6};  // warm-started from the last solution: a few suffice
+  int max_iterations{6};         // warm-started from the last solution: a few suffice
   double max_solver_time{0.08};  // s: the budget of one optimization (the next one resumes)
   int num_threads{1};
 
   // Odometry edge standard deviations (per metre walked + a floor), in m and rad.
   double odom_sigma_translation{0.02};
   double odom_sigma_rotation{0.005};
-  double odom_sigma_z{0.005};         // z, roll, pitch are near-true on a legged robot
+  double odom_sigma_z{0.005};  // z, roll, pitch are near-true on a legged robot
   double odom_sigma_roll_pitch{0.002};
 
   // Robust losses (on the whitened residual).

@@ -11,7 +11,8 @@ namespace sgraph {
 PointList RangeFilter(const PointList& points, const Eigen::Vector3f& origin, double min_range,
                       double max_range);
 
-/// Voxel-grid downsampling: the centroid of the points in each occupied voxel (in first-seen order).
+/// Voxel-grid downsampling: the centroid of the points in each occupied voxel (in first-seen
+/// order).
 PointList VoxelFilter(const PointList& points, double voxel_size);
 
 }  // namespace sgraph

@@ -47,6 +47,9 @@ struct FrontendConfig {
   double association_min_sigma_d{0.08};
   double association_min_sigma_angle_deg{3.0};
   double association_max_gap{1.0};  // segment may start this far beyond the mapped extent
+  // Two segments of one scan on one mapped plane must be this coplanar, else one is moved off
+  // (a window set back in its wall, the two faces of a step).
+  double association_coplanar_tolerance{0.05};
 
   // Rooms and corridors.
   bool detect_rooms{true};
@@ -56,6 +59,11 @@ struct FrontendConfig {
   double corridor_max_width{3.0};
   double room_gap_margin{1.1};  // wall segments are extended this much (doorways)
   int room_rays{180};
+  // Share of the rays that two opposed pairs of walls must take (ending on them within the
+  // rectangle they bound) for a four-wall room; the rest go through doorways. Else a
+  // polygonal room of all the walls hit.
+  double room_rectangle_share{0.7};
+  double room_max_opening{2.0};  // m: the widest unwalled stretch of a four-wall room's side
 
   /// Empty when valid, else what is wrong (naming the field).
   std::string Validate() const;

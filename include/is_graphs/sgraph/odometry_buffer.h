@@ -22,8 +22,7 @@ class OdometryBuffer {
   /// The pose at `stamp`: interpolated between the neighbouring samples (slerp) when they are
   /// at most `max_gap` apart, the last pose when `stamp` is at most `max_extrapolation` after
   /// it; nullopt otherwise.
-  std::optional<Eigen::Isometry3d> At(double stamp, double max_gap,
-                                      double max_extrapolation) const;
+  std::optional<Eigen::Isometry3d> At(double stamp, double max_gap, double max_extrapolation) const;
 
  private:
   struct Sample {

@@ -53,7 +53,7 @@ Association AssociatePlane(const PlaneSegment& observed_in_map,
 bool CoplanarInScan(const PlaneSegment& a, const PlaneSegment& b, double tolerance);
 
 /// Associates all segments of one scan (in M): each as AssociatePlane, but two segments that
-/// are not coplanar (CoplanarInScan with plane_distance_threshold) never take one mapped
+/// are not coplanar (CoplanarInScan with association_coplanar_tolerance) never take one mapped
 /// plane; the one further in Mahalanobis distance tries the next plane or becomes a new one.
 std::vector<Association> AssociateScan(const std::vector<PlaneSegment>& observed_in_map,
                                        const std::vector<MapPlaneView>& mapped,

@@ -12,13 +12,13 @@ namespace sgraph {
 
 /// One plane segment seen in a scan, in the frame of the scan's points (base_link).
 struct PlaneSegment {
-  geometry::Plane plane;  // normal towards the sensor
+  geometry::Plane plane;                                     // normal towards the sensor
   Eigen::Matrix3d information{Eigen::Matrix3d::Identity()};  // minimal tangent (plane_fit.h)
   Eigen::Matrix4d covariance{Eigen::Matrix4d::Identity()};   // of (n, d)
   bool horizontal{false};                                    // the floor
   Eigen::Vector3d start{Eigen::Vector3d::Zero()};  // extreme points along the wall direction
   Eigen::Vector3d end{Eigen::Vector3d::Zero()};    // (on the plane, at the points' mean height)
-  double low{0.0};   // extent along `up`
+  double low{0.0};                                 // extent along `up`
   double high{0.0};
   int num_points{0};
 };

@@ -34,9 +34,9 @@ struct PlaneFit {
 /// returns tilts by degrees where a recessed window or door frame falls inside the inlier band
 /// over part of its height; the information stays the data's (the tilt is then a measurement of
 /// zero with the spread the points support).
-std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>& indices,
-                                 double point_sigma, int max_effective_points,
-                                 const std::optional<Eigen::Vector3d>& vertical_about = std::nullopt);
+std::optional<PlaneFit> FitPlane(
+    const PointList& points, const std::vector<int>& indices, double point_sigma,
+    int max_effective_points, const std::optional<Eigen::Vector3d>& vertical_about = std::nullopt);
 
 /// The information of the minimal tangent as the rank-3 covariance of (n, d): G H⁻¹ Gᵀ with
 /// G = diag(B, 1).

@@ -24,6 +24,7 @@ struct Wall2D {
 struct RoomCandidate {
   RoomType type{RoomType::kRoom};
   bool rectangular{false};  // the paper's four-wall room (two opposed pairs)
+  double share{0.0};        // of the rays ending on its four walls (rectangular rooms)
   Eigen::Vector2d center{Eigen::Vector2d::Zero()};
   std::vector<int> walls;         // Wall2D ids
   std::vector<double> distances;  // n·center − d per wall (> 0: the centre is in front)

@@ -15,10 +15,10 @@ namespace sgraph {
 
 struct Keyframe {
   int id{0};
-  double stamp{0.0};  // seconds
-  Eigen::Isometry3d pose{Eigen::Isometry3d::Identity()};       // optimized, map <- base_link
-  Eigen::Isometry3d odom_pose{Eigen::Isometry3d::Identity()};  // measured, odom <- base_link
-  int previous{-1};                                            // id, -1 for the first keyframe
+  double stamp{0.0};                                               // seconds
+  Eigen::Isometry3d pose{Eigen::Isometry3d::Identity()};           // optimized, map <- base_link
+  Eigen::Isometry3d odom_pose{Eigen::Isometry3d::Identity()};      // measured, odom <- base_link
+  int previous{-1};                                                // id, -1 for the first keyframe
   Eigen::Isometry3d relative_odom{Eigen::Isometry3d::Identity()};  // previous^-1 * this
   Eigen::Matrix<double, 6, 6> odom_information{Eigen::Matrix<double, 6, 6>::Identity()};
 };

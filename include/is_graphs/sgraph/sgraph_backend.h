@@ -20,13 +20,17 @@ struct BackendRoom {
   std::vector<double> distances;  // measured signed distance centre -> plane, per plane
   Eigen::Vector2d axis{Eigen::Vector2d::UnitX()};  // corridors
   Eigen::Vector2d initial_center{Eigen::Vector2d::Zero()};
+  // Front end only: a four-wall room, and the share of rays its walls took (a better view of
+  // the same room, or a polygonal room seen later as four walls, replaces its walls).
+  bool rectangular{false};
+  double share{0.0};
 };
 
 struct BackendFloor {
   bool present{false};
   Eigen::Vector2d center{Eigen::Vector2d::Zero()};
-  std::vector<int> rooms;                 // room ids
-  std::vector<Eigen::Vector2d> offsets;   // measured room centre − floor centre, per room
+  std::vector<int> rooms;                // room ids
+  std::vector<Eigen::Vector2d> offsets;  // measured room centre − floor centre, per room
 };
 
 /// Everything the optimization reads and writes (a copy of the builder's state).

@@ -37,10 +37,15 @@ class SGraphBuilder {
     int keyframe{-1};     // the new keyframe's id
     int num_segments{0};  // planes seen in the keyframe
     int num_new_planes{0};
+    // Stage times of a keyframe scan [ms] (the benchmark's per-stage latency).
+    double preprocess_ms{0.0};   // deskew, range and voxel filters
+    double extraction_ms{0.0};   // floor and wall plane extraction
+    double association_ms{0.0};  // plane association and mapping
+    double rooms_ms{0.0};        // room, corridor and floor detection
   };
   struct OdometryResult {
     bool accepted{true};
-    bool reset{false};    // time went backwards: the graph was reset
+    bool reset{false};  // time went backwards: the graph was reset
     std::string warning;
   };
 
@@ -68,6 +73,7 @@ class SGraphBuilder {
     Eigen::Vector3d end{Eigen::Vector3d::Zero()};
     bool horizontal{false};
     Eigen::Matrix3d information{Eigen::Matrix3d::Zero()};  // fused, tangent at the normal
+    int merged_into{-1};  // >= 0: a duplicate of that plane, merged into it (the id stays unused)
   };
 
   void ResetLocked();
@@ -75,6 +81,12 @@ class SGraphBuilder {
   void AddPlaneObservations(int keyframe, const std::vector<PlaneSegment>& segments,
                             ScanResult& result);
   void ExtendPlane(MapPlane& mapped, const PlaneSegment& observed_in_map);
+  /// Merges into an older plane each of `touched` that grew to overlap a coplanar one (two
+  /// pieces of one wall, mapped apart while a gap lay between them): observations and room
+  /// members move to the older id; mutex held.
+  void MergeDuplicatePlanes(const std::vector<int>& touched);
+  void MergePlane(int from, int into);
+  static PlaneSegment AsSegment(const MapPlane& plane);
   // Rooms and corridors around a keyframe, and the floor over them; mutex held.
   /// Whether `point` (x, y in M) lies in front of every listed wall (0.3 m margin).
   bool InsideWalls(const std::vector<int>& wall_ids, const Eigen::Vector2d& point) const;

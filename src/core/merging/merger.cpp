@@ -25,11 +25,16 @@ const sgraph::Keyframe* NewestKeyframe(const sgraph::SGraph& g) {
 
 const char* ToString(MergeEvent event) {
   switch (event) {
-    case MergeEvent::kNone: return "none";
-    case MergeEvent::kLocalized: return "localized";
-    case MergeEvent::kUpdated: return "updated";
-    case MergeEvent::kRejected: return "rejected";
-    case MergeEvent::kLost: return "lost";
+    case MergeEvent::kNone:
+      return "none";
+    case MergeEvent::kLocalized:
+      return "localized";
+    case MergeEvent::kUpdated:
+      return "updated";
+    case MergeEvent::kRejected:
+      return "rejected";
+    case MergeEvent::kLost:
+      return "lost";
   }
   return "?";
 }
@@ -130,14 +135,14 @@ MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) 
   out.event = starting ? MergeEvent::kLocalized : MergeEvent::kUpdated;
   out.bim_T_map = out.solution.BimTMap();
   out.covariance = out.solution.covariance;
-  out.bim_T_map_corrected = out.bim_T_map;
+  out.bim_T_odom = out.bim_T_map;
   if (const sgraph::Keyframe* k = NewestKeyframe(s_graph)) {
-    auto corrected = out.solution.keyframes.find(k->id);
-    if (corrected != out.solution.keyframes.end()) {
-      const Eigen::Isometry3d c = out.bim_T_map * corrected->second * k->pose.inverse();
-      out.bim_T_map_corrected = geometry::IsometryFromXYYaw(
-          c.translation().x(), c.translation().y(), geometry::Yaw(c), z);
-    }
+    auto merged = out.solution.keyframes.find(k->id);
+    const Eigen::Isometry3d& map_T_k =
+        merged != out.solution.keyframes.end() ? merged->second : k->pose;
+    const Eigen::Isometry3d c = out.bim_T_map * map_T_k * k->odom_pose.inverse();
+    out.bim_T_odom = geometry::IsometryFromXYYaw(c.translation().x(), c.translation().y(),
+                                                 geometry::Yaw(c), c.translation().z());
   }
   out.message = out.consistency.message;
   return out;

@@ -70,12 +70,15 @@ std::string FrontendConfig::Validate() const {
   c.Positive("association_min_sigma_d", association_min_sigma_d);
   c.Positive("association_min_sigma_angle_deg", association_min_sigma_angle_deg);
   c.NonNegative("association_max_gap", association_max_gap);
+  c.Positive("association_coplanar_tolerance", association_coplanar_tolerance);
   c.Positive("room_max_range", room_max_range);
   c.Positive("room_min_width", room_min_width);
   c.Less("room_min_width", room_min_width, "room_max_width", room_max_width);
   c.Positive("corridor_max_width", corridor_max_width);
   c.NonNegative("room_gap_margin", room_gap_margin);
   c.Range("room_rays", room_rays, 16, 3600);
+  c.Range("room_rectangle_share", room_rectangle_share, 0.5, 1.0);
+  c.Positive("room_max_opening", room_max_opening);
   return c.error();
 }
 

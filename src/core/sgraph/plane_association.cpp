@@ -87,7 +87,7 @@ std::vector<Association> AssociateScan(const std::vector<PlaneSegment>& observed
         if (result[i].index < 0 || result[i].index != result[j].index) continue;
         if (observed_in_map[i].horizontal ||
             CoplanarInScan(observed_in_map[i], observed_in_map[j],
-                           config.plane_distance_threshold))
+                           config.association_coplanar_tolerance))
           continue;
         const size_t loser = result[i].distance2 <= result[j].distance2 ? j : i;
         excluded[loser].push_back(result[loser].index);

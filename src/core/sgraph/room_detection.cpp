@@ -4,12 +4,55 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace is_graphs {
 namespace sgraph {
 namespace {
 
+constexpr double kRectangleSlack = 0.2;  // m: a hit this far outside a rectangle is on it
+constexpr double kCornerSlack = 0.3;     // m: a wall's seen extent, grown by this (corners)
+
+/// Whether two walls lie on one line (two pieces of a wall with a doorway between them).
+bool OnLine(const Wall2D& a, const Wall2D& b) {
+  return a.normal.dot(b.normal) > std::cos(3.0 * M_PI / 180.0) && std::abs(a.d - b.d) < 0.1;
+}
+
 Eigen::Vector2d Along(const Wall2D& w) { return Eigen::Vector2d(-w.normal.y(), w.normal.x()); }
+
+/// The widest stretch of the rectangle's sides (walls {a0, a1} and {b0, b1} opposed) that no
+/// wall on the side's line covers: a doorway is narrow, the rest of an L-shaped room is not.
+double LargestOpening(const std::vector<Wall2D>& walls, const int four[4]) {
+  auto corner = [&](const Wall2D& p, const Wall2D& q) {
+    Eigen::Matrix2d m;
+    m << p.normal.transpose(), q.normal.transpose();
+    return Eigen::Vector2d(m.fullPivLu().solve(Eigen::Vector2d(p.d, q.d)));
+  };
+  double largest = 0.0;
+  for (int side = 0; side < 4; ++side) {
+    const Wall2D& w = walls[four[side]];
+    const int* across = side < 2 ? four + 2 : four;  // the other pair bounds this side
+    const Eigen::Vector2d along = Along(w);
+    double s0 = along.dot(corner(w, walls[across[0]])), s1 = along.dot(corner(w, walls[across[1]]));
+    if (s0 > s1) std::swap(s0, s1);
+    std::vector<std::pair<double, double>> covered;
+    for (const Wall2D& other : walls) {
+      if (!OnLine(other, w)) continue;
+      double lo = along.dot(other.start), hi = along.dot(other.end);
+      if (lo > hi) std::swap(lo, hi);
+      covered.emplace_back(lo - kCornerSlack, hi + kCornerSlack);
+    }
+    std::sort(covered.begin(), covered.end());
+    double reached = s0;
+    for (const auto& [lo, hi] : covered) {
+      if (lo > reached) largest = std::max(largest, std::min(lo, s1) - reached);
+      reached = std::max(reached, hi);
+      if (reached >= s1) break;
+    }
+    largest = std::max(largest, s1 - reached);
+  }
+  return largest;
+}
 
 // Area centroid of a closed polygon (shoelace); the vertex mean for a degenerate one.
 Eigen::Vector2d PolygonCentroid(const std::vector<Eigen::Vector2d>& polygon, double* area) {
@@ -45,6 +88,11 @@ RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& positio
     const double a = 2.0 * M_PI * k / n;
     fan.directions[k] = Eigen::Vector2d(std::cos(a), std::sin(a));
   }
+  // Margins bridge doorways and unseen corners but never hide a wall seen behind them (the
+  // far wall of a corridor behind the margin of an office's side wall): a hit on a margin
+  // counts only for a ray that hits no wall on its seen extent.
+  std::vector<double> bridge_range(n, std::numeric_limits<double>::infinity());
+  std::vector<int> bridge_hit(n, -1);
   for (size_t w = 0; w < walls.size(); ++w) {
     const Wall2D& wall = walls[w];
     const double front = wall.normal.dot(position) - wall.d;
@@ -52,19 +100,26 @@ RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& positio
     const Eigen::Vector2d along = Along(wall);
     double lo = along.dot(wall.start), hi = along.dot(wall.end);
     if (lo > hi) std::swap(lo, hi);
-    lo -= config.room_gap_margin;
-    hi += config.room_gap_margin;
     for (int k = 0; k < n; ++k) {
       const double cosine = wall.normal.dot(fan.directions[k]);
       if (cosine > -1e-6) continue;  // parallel or away
       const double t = front / -cosine;
-      if (t > config.room_max_range || t >= fan.range[k]) continue;
+      if (t > config.room_max_range) continue;
       const double s = along.dot(position + t * fan.directions[k]);
-      if (s < lo || s > hi) continue;
-      fan.range[k] = t;
-      fan.hit[k] = static_cast<int>(w);
+      const bool seen = s >= lo - kCornerSlack && s <= hi + kCornerSlack;
+      if (seen && t < fan.range[k]) {
+        fan.range[k] = t;
+        fan.hit[k] = static_cast<int>(w);
+      } else if (!seen && s >= lo - config.room_gap_margin && s <= hi + config.room_gap_margin &&
+                 t < bridge_range[k]) {
+        bridge_range[k] = t;
+        bridge_hit[k] = static_cast<int>(w);
+      }
     }
   }
+  for (int k = 0; k < n; ++k)
+    if (fan.hit[k] < 0 && bridge_hit[k] >= 0)
+      fan.hit[k] = bridge_hit[k], fan.range[k] = bridge_range[k];
   return fan;
 }
 
@@ -99,35 +154,68 @@ std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
   double area = 0.0;
   room.center = PolygonCentroid(polygon, &area);
   if (area < config.room_min_width * config.room_min_width) return std::nullopt;
-  // The paper's four-wall room: exactly two opposed pairs.
-  if (members.size() == 4) {
-    std::vector<std::pair<int, int>> pairs;
-    std::vector<bool> paired(4, false);
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        if (!paired[i] && !paired[j] &&
-            walls[members[i]].normal.dot(walls[members[j]].normal) < -std::cos(0.2)) {
-          pairs.emplace_back(members[i], members[j]);
-          paired[i] = paired[j] = true;
-        }
-    if (pairs.size() == 2) {
+  // The paper's four-wall room: two opposed pairs of walls that take (almost) every ray; other
+  // members then are walls seen through a doorway and are left out.
+  struct Rectangle {
+    int walls[4];
+    int rays{0};
+    Eigen::Vector2d center;
+  };
+  std::optional<Rectangle> best;
+  std::vector<std::pair<int, int>> opposed;
+  for (size_t i = 0; i < members.size(); ++i)
+    for (size_t j = i + 1; j < members.size(); ++j)
+      if (walls[members[i]].normal.dot(walls[members[j]].normal) < -std::cos(0.2))
+        opposed.emplace_back(members[i], members[j]);
+  for (size_t p = 0; p < opposed.size(); ++p) {
+    for (size_t q = p + 1; q < opposed.size(); ++q) {
+      const auto [a0, a1] = opposed[p];
+      const auto [b0, b1] = opposed[q];
+      if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) continue;
+      const int four[4] = {a0, a1, b0, b1};
       // Mid-lines: (n_a − n_b)·ρ = d_a − d_b for each pair.
-      Eigen::Matrix2d a;
-      Eigen::Vector2d b;
+      Eigen::Matrix2d m;
+      Eigen::Vector2d rhs;
       bool widths_ok = true;
-      for (int p = 0; p < 2; ++p) {
-        const Wall2D& wa = walls[pairs[p].first];
-        const Wall2D& wb = walls[pairs[p].second];
-        a.row(p) = (wa.normal - wb.normal).transpose();
-        b(p) = wa.d - wb.d;
+      for (int k = 0; k < 2; ++k) {
+        const Wall2D& wa = walls[four[2 * k]];
+        const Wall2D& wb = walls[four[2 * k + 1]];
+        m.row(k) = (wa.normal - wb.normal).transpose();
+        rhs(k) = wa.d - wb.d;
         const double width = (wa.normal.dot(position) - wa.d) + (wb.normal.dot(position) - wb.d);
         widths_ok = widths_ok && width >= config.room_min_width && width <= config.room_max_width;
       }
-      if (widths_ok && std::abs(a.determinant()) > 0.3) {
-        room.center = a.fullPivLu().solve(b);
-        room.rectangular = true;
+      if (!widths_ok || std::abs(m.determinant()) <= 0.3) continue;
+      // The rays that end on one of the four walls within the rectangle they bound (a wall
+      // seen through a doorway lies outside it).
+      // Each of the four must take rays of its own: a wall that only bounds the rectangle
+      // somewhere unseen (an office's side wall beyond a corridor's doorway) does not.
+      int rays = 0, per_wall[4] = {0, 0, 0, 0};
+      for (int k = 0; k < n; ++k) {
+        const int h = fan.hit[k];
+        if (h < 0) continue;
+        const int side = static_cast<int>(
+            std::find_if(four, four + 4, [&](int w) { return OnLine(walls[h], walls[w]); }) - four);
+        if (side == 4) continue;
+        const Eigen::Vector2d hit = position + fan.range[k] * fan.directions[k];
+        bool inside = true;
+        for (int w : four)
+          inside = inside && walls[w].normal.dot(hit) - walls[w].d > -kRectangleSlack;
+        if (!inside) continue;
+        ++rays;
+        ++per_wall[side];
       }
+      if (*std::min_element(per_wall, per_wall + 4) < significant) continue;
+      if (LargestOpening(walls, four) > config.room_max_opening) continue;
+      if (!best || rays > best->rays)
+        best = Rectangle{{a0, a1, b0, b1}, rays, m.fullPivLu().solve(rhs)};
     }
+  }
+  if (best && best->rays >= config.room_rectangle_share * n) {
+    room.center = best->center;
+    room.rectangular = true;
+    room.share = static_cast<double>(best->rays) / n;
+    members.assign(best->walls, best->walls + 4);
   }
   room.type = RoomType::kRoom;
   for (int m : members) {

@@ -1,5 +1,6 @@
 #include "is_graphs/sgraph/sgraph_builder.h"
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -104,8 +105,8 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
       result.warning = "cloud out of order (stamp not after the last one): skipped";
       return result;
     }
-    const auto pose = odometry_.At(scan.stamp, frontend_.max_odom_gap,
-                                   frontend_.max_odom_extrapolation);
+    const auto pose =
+        odometry_.At(scan.stamp, frontend_.max_odom_gap, frontend_.max_odom_extrapolation);
     if (!pose) {
       std::ostringstream s;
       s << "no odometry at the cloud's time " << std::fixed << scan.stamp
@@ -122,28 +123,33 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
     odometry = odometry_;
   }
 
-  const auto deskewed = DeskewToBase(
-      scan, base_T_sensor,
-      [&](double t) {
-        return odometry.At(t, frontend_.max_odom_gap, frontend_.max_odom_extrapolation);
-      });
+  using Clock = std::chrono::steady_clock;
+  const auto ms_since = [](Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  };
+  auto t0 = Clock::now();
+  const auto deskewed = DeskewToBase(scan, base_T_sensor, [&](double t) {
+    return odometry.At(t, frontend_.max_odom_gap, frontend_.max_odom_extrapolation);
+  });
   if (!deskewed) {
     result.warning = "odometry does not cover the cloud's time span: skipped";
     return result;
   }
   const size_t dropped = scan.points.size() - deskewed->size();
   const Eigen::Vector3f origin = base_T_sensor.translation().cast<float>();
-  const PointList ranged =
-      RangeFilter(*deskewed, origin, frontend_.min_range, frontend_.max_range);
+  const PointList ranged = RangeFilter(*deskewed, origin, frontend_.min_range, frontend_.max_range);
   if (ranged.size() < static_cast<size_t>(frontend_.min_plane_points)) {
     result.warning = "cloud has too few valid points in range: skipped";
     return result;
   }
   if (dropped > 0) result.warning = std::to_string(dropped) + " non-finite points dropped";
   const PointList filtered = VoxelFilter(ranged, frontend_.voxel_size);
+  result.preprocess_ms = ms_since(t0);
+  t0 = Clock::now();
   const Eigen::Vector3d up = odom_pose.linear().transpose() * Eigen::Vector3d::UnitZ();
   const std::vector<PlaneSegment> segments =
       ExtractPlanes(filtered, up, base_T_sensor.translation(), frontend_);
+  result.extraction_ms = ms_since(t0);
   PointList map_points = VoxelFilter(filtered, frontend_.map_voxel_size);
 
   std::lock_guard<std::mutex> lock(mutex_);
@@ -167,8 +173,12 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
   clouds_.push_back(std::move(map_points));
   result.status = ScanStatus::kKeyframe;
   result.keyframe = kf.id;
+  t0 = Clock::now();
   AddPlaneObservations(kf.id, segments, result);
+  result.association_ms = ms_since(t0);
+  t0 = Clock::now();
   if (frontend_.detect_rooms) UpdateRooms(kf.id);
+  result.rooms_ms = ms_since(t0);
   return result;
 }
 
@@ -178,6 +188,7 @@ void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSe
   std::vector<MapPlaneView> views;
   views.reserve(planes_.size());
   for (const auto& p : planes_) {
+    if (p.merged_into >= 0) continue;
     MapPlaneView v;
     v.id = p.plane.id;
     v.plane = p.plane.plane;
@@ -197,8 +208,8 @@ void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSe
   }
   // Two coplanar segments of one scan may land on one mapped plane (a wall behind an
   // obstacle), two parallel ones apart may not.
-  const std::vector<Association> associations =
-      AssociateScan(in_map_segments, views, frontend_);
+  const std::vector<Association> associations = AssociateScan(in_map_segments, views, frontend_);
+  std::vector<int> touched;  // planes observed now: they may have grown into a duplicate
   for (size_t s = 0; s < segments.size(); ++s) {
     const PlaneSegment& segment = segments[s];
     const PlaneSegment& in_map = in_map_segments[s];
@@ -207,7 +218,7 @@ void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSe
     int plane_id;
     if (a.index >= 0) {
       plane_id = views[a.index].id;
-      ExtendPlane(planes_[a.index], in_map);
+      ExtendPlane(planes_[plane_id], in_map);
     } else {
       MapPlane mp;
       mp.plane.id = static_cast<int>(planes_.size());
@@ -233,7 +244,9 @@ void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSe
     o.local = segment.plane;
     o.information = segment.information;
     observations_.push_back(o);
+    touched.push_back(plane_id);
   }
+  MergeDuplicatePlanes(touched);
 }
 
 void SGraphBuilder::ExtendPlane(MapPlane& mapped, const PlaneSegment& in_map) {

@@ -75,7 +75,8 @@ SGraph SGraphBuilder::Snapshot() const {
   graph.revision = revision_;
   graph.stamp = keyframes_.empty() ? 0.0 : keyframes_.back().stamp;
   graph.keyframes = keyframes_;
-  for (const auto& p : planes_) graph.planes.push_back(p.plane);
+  for (const auto& p : planes_)
+    if (p.merged_into < 0) graph.planes.push_back(p.plane);
   graph.observations = observations_;
   const double height = FloorHeight();
   for (size_t i = 0; i < rooms_.size(); ++i) {

@@ -11,7 +11,7 @@ namespace sgraph {
 
 double SGraphBuilder::FloorHeight() const {
   for (const auto& p : planes_)
-    if (p.horizontal && p.plane.plane.normal.z() > 0.9)
+    if (p.merged_into < 0 && p.horizontal && p.plane.plane.normal.z() > 0.9)
       return p.plane.plane.d / p.plane.plane.normal.z();
   return keyframes_.empty() ? 0.0 : keyframes_.front().pose.translation().z() - 0.5;
 }
@@ -35,7 +35,7 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
   const double z = pose.translation().z();
   std::vector<Wall2D> walls;
   for (const auto& p : planes_) {
-    if (p.horizontal) continue;
+    if (p.horizontal || p.merged_into >= 0) continue;
     const Eigen::Vector3d& n = p.plane.plane.normal;
     const double horizontal = n.head<2>().norm();
     if (horizontal < 0.9) continue;
@@ -67,8 +67,15 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
                         InsideWalls(candidate->walls, room.center);
     const bool same = (shared >= 2 && (near || room.type != candidate->type)) || mutual;
     if (!same) continue;
-    if (room.type == RoomType::kCorridor && candidate->type == RoomType::kRoom) {
+    // A corridor closed later, or a polygonal room (a doorway's far wall counted in) seen
+    // later as the four-wall room it is, takes the better view.
+    const bool better = (room.type == RoomType::kCorridor && candidate->type == RoomType::kRoom) ||
+                        (room.type == RoomType::kRoom && candidate->rectangular &&
+                         (!room.rectangular || candidate->share > room.share + 0.05));
+    if (better) {
       room.type = RoomType::kRoom;
+      room.rectangular = candidate->rectangular;
+      room.share = candidate->share;
       room.center = candidate->center;
       room.initial_center = candidate->center;
       room.planes = candidate->walls;
@@ -86,6 +93,8 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
   room.planes = candidate->walls;
   room.distances = candidate->distances;
   room.axis = candidate->axis;
+  room.rectangular = candidate->rectangular;
+  room.share = candidate->share;
   rooms_.push_back(room);
   room_keyframes_.push_back({keyframe});
   UpdateFloor();

@@ -25,12 +25,13 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <optional>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "../pose_conversions.h"
 #include "../velodyne_conversions.h"
+#include "bag_replay.h"
 #include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/agraph/ifc_conversion.h"
 #include "is_graphs/geometry/triangle_mesh.h"
@@ -45,19 +46,8 @@ using namespace is_graphs;
 
 double Ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
-}
-
-long PeakRssKb() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
-  return -1;
-}
+using bag_replay::PeakRssKb;
+using bag_replay::Percentile;
 
 int Usage() {
   std::cerr << "usage: bench_sgraph BAG [--building FILE] [--storey S] [--keyframe-distance M]"
@@ -76,13 +66,20 @@ int main(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return Usage();
-    if (a == "--building") building_path = argv[++i];
-    else if (a == "--storey") storey = argv[++i];
-    else if (a == "--keyframe-distance") frontend.keyframe_distance = std::stod(argv[++i]);
-    else if (a == "--min-plane-points") min_plane_points_eval = std::stoi(argv[++i]);
-    else if (a == "--max-iterations") backend.max_iterations = std::stoi(argv[++i]);
-    else if (a == "--max-solver-time") backend.max_solver_time = std::stod(argv[++i]);
-    else return Usage();
+    if (a == "--building")
+      building_path = argv[++i];
+    else if (a == "--storey")
+      storey = argv[++i];
+    else if (a == "--keyframe-distance")
+      frontend.keyframe_distance = std::stod(argv[++i]);
+    else if (a == "--min-plane-points")
+      min_plane_points_eval = std::stoi(argv[++i]);
+    else if (a == "--max-iterations")
+      backend.max_iterations = std::stoi(argv[++i]);
+    else if (a == "--max-solver-time")
+      backend.max_solver_time = std::stod(argv[++i]);
+    else
+      return Usage();
   }
   if (const auto e = frontend.Validate(); !e.empty()) {
     std::cerr << "bench_sgraph: " << e << "\n";
@@ -95,13 +92,7 @@ int main(int argc, char** argv) {
     std::cerr << "bench_sgraph: " << bag_path << ": " << e.what() << "\n";
     return 2;
   }
-  // base_link <- velodyne from tf_static.
-  Eigen::Isometry3d base_T_sensor = Eigen::Isometry3d::Identity();
-  for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(std::vector<std::string>{"tf_static", "/tf_static"}))) {
-    if (auto tf = m.instantiate<tf2_msgs::TFMessage>())
-      for (const auto& t : tf->transforms)
-        if (t.child_frame_id == "velodyne") base_T_sensor = tf2::transformToEigen(t);
-  }
+  const Eigen::Isometry3d base_T_sensor = bag_replay::BaseTSensor(bag);
   sgraph::SGraphBuilder builder(frontend, backend);
   std::vector<double> scan_ms, keyframe_ms, optimize_ms;
   std::vector<std::pair<int, double>> optimize_at;
@@ -109,8 +100,7 @@ int main(int argc, char** argv) {
   double first = -1.0, last = 0.0;
   const auto start = Clock::now();
   Clock::duration processing{0};
-  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"velodyne_points", "odom", "ground_truth/pose",
-                                             "/velodyne_points", "/odom", "/ground_truth/pose"}));
+  rosbag::View view(bag, rosbag::TopicQuery(bag_replay::SensorTopics()));
   for (const auto& m : view) {
     const double t = m.getTime().toSec();
     if (first < 0.0) first = t;
@@ -145,16 +135,19 @@ int main(int argc, char** argv) {
   std::printf("scans: %zu, keyframes: %zu, planes: %zu, observations: %zu, rooms: %zu\n",
               scan_ms.size(), graph.keyframes.size(), graph.planes.size(),
               graph.observations.size(), graph.rooms.size());
-  std::printf("per-scan latency [ms]: median %.2f, p99 %.2f, max %.2f (keyframe scans: median %.2f, p99 %.2f)\n",
-              Percentile(scan_ms, 0.5), Percentile(scan_ms, 0.99), Percentile(scan_ms, 1.0),
-              Percentile(keyframe_ms, 0.5), Percentile(keyframe_ms, 0.99));
-  std::printf("optimization [ms]: median %.1f, max %.1f; by keyframes:", Percentile(optimize_ms, 0.5),
-              Percentile(optimize_ms, 1.0));
+  std::printf(
+      "per-scan latency [ms]: median %.2f, p99 %.2f, max %.2f (keyframe scans: median %.2f, p99 "
+      "%.2f)\n",
+      Percentile(scan_ms, 0.5), Percentile(scan_ms, 0.99), Percentile(scan_ms, 1.0),
+      Percentile(keyframe_ms, 0.5), Percentile(keyframe_ms, 0.99));
+  std::printf("optimization [ms]: median %.1f, max %.1f; by keyframes:",
+              Percentile(optimize_ms, 0.5), Percentile(optimize_ms, 1.0));
   for (size_t i = 0; i < optimize_at.size(); ++i)
     if (i + 1 == optimize_at.size() || (i + 1) % std::max<size_t>(1, optimize_at.size() / 6) == 0)
       std::printf(" %d:%.1f", optimize_at[i].first, optimize_at[i].second);
   std::printf("\nreal-time factor: %.1fx (processing only %.1fx), wall %.1f s\n",
-              bag_seconds / wall, bag_seconds / std::chrono::duration<double>(processing).count(), wall);
+              bag_seconds / wall, bag_seconds / std::chrono::duration<double>(processing).count(),
+              wall);
   std::printf("peak RSS: %.1f MiB\n", PeakRssKb() / 1024.0);
 
   if (building_path.empty()) return 0;
@@ -170,11 +163,12 @@ int main(int argc, char** argv) {
   }
   const auto traj = sgraph::EvaluateTrajectory(graph, truth);
   const Eigen::Vector3d tilted = traj.bim_T_map.linear() * Eigen::Vector3d::UnitZ();
-  std::printf("trajectory APE RMSE (%d keyframes): SE(3)-aligned S-Graph %.3f m, odometry %.3f m "
-              "(alignment tilt %.2f deg); yaw-aligned S-Graph %.3f m, odometry %.3f m\n",
-              traj.keyframes, traj.sgraph_rmse, traj.odom_rmse,
-              std::acos(std::min(1.0, tilted.z())) * 180.0 / M_PI, traj.sgraph_rmse_gravity,
-              traj.odom_rmse_gravity);
+  std::printf(
+      "trajectory APE RMSE (%d keyframes): SE(3)-aligned S-Graph %.3f m, odometry %.3f m "
+      "(alignment tilt %.2f deg); yaw-aligned S-Graph %.3f m, odometry %.3f m\n",
+      traj.keyframes, traj.sgraph_rmse, traj.odom_rmse,
+      std::acos(std::min(1.0, tilted.z())) * 180.0 / M_PI, traj.sgraph_rmse_gravity,
+      traj.odom_rmse_gravity);
   const Eigen::Isometry3d& bim_T_map = traj.bim_T_map_gravity;
   std::optional<geometry::TriangleMesh> mesh;
   if (!building.mesh.empty()) {
@@ -200,13 +194,15 @@ int main(int argc, char** argv) {
     ang.push_back(p.angle_deg);
     if (p.distance <= 0.05 && p.angle_deg <= 1.0) ++good;
   }
-  std::printf("wall planes (>= %d points): %zu, on windows/doors: %d, on a BIM wall-surface: %d, "
-              "within 5 cm and 1 deg: %d; distance median %.3f max %.3f m, angle median %.2f "
-              "max %.2f deg\n",
-              min_plane_points_eval, planes.size(), openings, matched, good, Percentile(dist, 0.5),
-              Percentile(dist, 1.0), Percentile(ang, 0.5), Percentile(ang, 1.0));
+  std::printf(
+      "wall planes (>= %d points): %zu, on windows/doors: %d, on a BIM wall-surface: %d, "
+      "within 5 cm and 1 deg: %d; distance median %.3f max %.3f m, angle median %.2f "
+      "max %.2f deg\n",
+      min_plane_points_eval, planes.size(), openings, matched, good, Percentile(dist, 0.5),
+      Percentile(dist, 1.0), Percentile(ang, 0.5), Percentile(ang, 1.0));
   const auto rooms = sgraph::EvaluateRooms(graph, building, truth, bim_T_map);
-  std::printf("rooms: walked through %d, found %d, detected %d, false %d (of which duplicates %d)\n",
-              rooms.walked, rooms.found, rooms.detected, rooms.false_rooms, rooms.duplicates);
+  std::printf(
+      "rooms: walked through %d, found %d, detected %d, false %d (of which duplicates %d)\n",
+      rooms.walked, rooms.found, rooms.detected, rooms.false_rooms, rooms.duplicates);
   return 0;
 }

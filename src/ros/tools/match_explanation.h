@@ -1,0 +1,81 @@
+// replay_pipeline --explain: how the S-Graph's rooms relate to the BIM's under the true motion
+// (from the bag's ground truth): for each S-room, the A-room it lies in, how its planes fit that
+// room, and the matcher's local candidates. The question it answers: why did matching not
+// become UNIQUE (a false S-room, a room whose planes do not fit, a missing candidate).
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/geometry/se3.h"
+#include "is_graphs/matching/candidate_graph.h"
+#include "is_graphs/matching/room_descriptor.h"
+#include "is_graphs/sgraph/evaluation.h"
+
+namespace is_graphs {
+namespace bag_replay {
+
+inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& graph,
+                         const std::vector<sgraph::StampedPose>& truth,
+                         const matching::MatcherConfig& config) {
+  const auto traj = sgraph::EvaluateTrajectory(graph, truth);
+  const Eigen::Vector3d xi = geometry::ToXYYaw(traj.bim_T_map_gravity);
+  matching::Pose2 true_pose;
+  true_pose.yaw = xi.z();
+  true_pose.t = xi.head<2>();
+  std::printf("explain: true B_x_M (%.2f, %.2f, %.1f deg) from %d keyframes\n", xi.x(), xi.y(),
+              xi.z() * 180 / M_PI, traj.keyframes);
+  const auto a_rooms = matching::DescribeARooms(building);
+  const auto s_rooms = matching::DescribeSRooms(graph);
+  auto name = [&](int a_index) {
+    return a_index < 0 ? std::string("-") : building.rooms[a_rooms[a_index].id].name;
+  };
+  for (size_t i = 0; i < s_rooms.size(); ++i) {
+    const auto& s = s_rooms[i];
+    const Eigen::Vector2d c = true_pose.Apply(s.centre);
+    int inside = -1;
+    double best = 1e9;
+    for (size_t j = 0; j < a_rooms.size(); ++j) {
+      const double dist = matching::SignedDistanceToPolygon(a_rooms[j].polygon, c);
+      if (dist < best) best = dist, inside = static_cast<int>(j);
+    }
+    std::printf("S-room %d (%s, %zu planes) centre in B (%.2f, %.2f): in %s (%.2f m)", s.id,
+                s.kind == matching::RoomKind::kRoom ? "room" : "corridor", s.planes.size(), c.x(),
+                c.y(), name(inside).c_str(), best);
+    if (inside >= 0) {
+      const auto& a = a_rooms[inside];
+      const auto e = matching::EvaluatePair(s, a, true_pose, s.kind == matching::RoomKind::kRoom,
+                                            matching::EvaluationTolerances::From(config));
+      std::printf("; under the truth: %s, %zu/%zu planes paired, rms %.3f m, A-centre %.2f m away",
+                  e.ok ? "ok" : "NOT ok", e.surfaces.size(), s.planes.size(), e.rms,
+                  (a.centre - c).norm());
+    }
+    std::printf("\n");
+    if (std::getenv("IS_GRAPHS_EXPLAIN_PLANES")) {
+      for (const auto& p : s.planes) {
+        const Eigen::Vector2d n = true_pose.Rotate(p.normal);
+        const double d = p.d + n.dot(true_pose.t);
+        std::printf("      plane %d: n (%.2f, %.2f) d %.2f r %.2f length %.2f\n", p.id, n.x(),
+                    n.y(), d, p.r, p.length);
+      }
+      if (inside >= 0)
+        for (const auto& p : a_rooms[inside].planes)
+          std::printf("      A-surface %d: n (%.2f, %.2f) d %.2f r %.2f length %.2f\n", p.id,
+                      p.normal.x(), p.normal.y(), p.d, p.r, p.length);
+    }
+    for (const auto& cand :
+         matching::GenerateRoomCandidates(s, static_cast<int>(i), a_rooms, config)) {
+      const double dyaw = geometry::NormalizeAngle(cand.pose.yaw - true_pose.yaw) * 180 / M_PI;
+      const double dt = (cand.pose.Apply(s.centre) - c).norm();
+      std::printf(
+          "    candidate %-14s quality %.2f %s yaw %+6.1f deg, centre %.2f m from the truth\n",
+          name(cand.a_room).c_str(), cand.quality, cand.full_rank ? "full" : "axis", dyaw, dt);
+    }
+  }
+}
+
+}  // namespace bag_replay
+}  // namespace is_graphs

@@ -1,0 +1,213 @@
+// replay_pipeline: the whole localization (S-Graph, matcher, merger) on a scenario bag, from the
+// core, synchronously and without ROS transport: deterministic and as fast as the machine goes.
+// Prints the match and merge events, the time and distance to localize, the per-stage latency,
+// the real-time factor and the peak RSS; writes the BIM-frame poses and the ground truth as TUM
+// files and a JSON summary (make bench, scripts/evaluate.py and debugging read them).
+//
+//   replay_pipeline BAG --building FILE.ifc|.agraph.json [--storey S] [--duration S]
+//                   [--out-prefix PREFIX]   (writes PREFIX.pose_bim.tum, PREFIX.truth.tum,
+//                                            PREFIX.json)
+//                   [--explain]  (the S-rooms against the BIM under the true motion)
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "../pose_conversions.h"
+#include "../velodyne_conversions.h"
+#include "bag_replay.h"
+#include "is_graphs/agraph/agraph_queries.h"
+#include "is_graphs/agraph/ifc_conversion.h"
+#include "is_graphs/geometry/se3.h"
+#include "is_graphs/pipeline/localization_pipeline.h"
+#include "match_explanation.h"
+
+namespace {
+
+using namespace is_graphs;
+using bag_replay::Percentile;
+
+int Usage() {
+  std::cerr << "usage: replay_pipeline BAG --building FILE [--storey S] [--duration S] "
+               "[--out-prefix PREFIX] [--explain]\n";
+  return 2;
+}
+
+void WriteTum(std::FILE* f, double t, const Eigen::Isometry3d& pose) {
+  const Eigen::Quaterniond q(pose.linear());
+  const Eigen::Vector3d p = pose.translation();
+  std::fprintf(f, "%.6f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", t, p.x(), p.y(), p.z(), q.x(), q.y(),
+               q.z(), q.w());
+}
+
+nlohmann::json Stats(const std::vector<double>& v) {
+  return {{"count", v.size()},
+          {"median_ms", Percentile(v, 0.5)},
+          {"p99_ms", Percentile(v, 0.99)},
+          {"max_ms", Percentile(v, 1.0)}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) return Usage();
+  std::string bag_path = argv[1], building_path, storey, prefix;
+  double max_duration = -1.0;
+  bool explain = false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--explain") {
+      explain = true;
+      continue;
+    }
+    if (i + 1 >= argc) return Usage();
+    if (a == "--building")
+      building_path = argv[++i];
+    else if (a == "--storey")
+      storey = argv[++i];
+    else if (a == "--duration")
+      max_duration = std::stod(argv[++i]);
+    else if (a == "--out-prefix")
+      prefix = argv[++i];
+    else
+      return Usage();
+  }
+  if (building_path.empty()) return Usage();
+  pipeline::PipelineConfig config;
+  if (const auto e = config.Validate(); !e.empty()) {
+    std::cerr << "replay_pipeline: " << e << "\n";
+    return 2;
+  }
+  auto loaded = agraph::LoadBim(building_path);
+  if (!loaded.ok()) {
+    std::cerr << "replay_pipeline: " << loaded.error() << "\n";
+    return 2;
+  }
+  agraph::AGraph building = loaded.value();
+  if (!storey.empty()) {
+    auto s = agraph::SelectStorey(building, storey);
+    if (!s.ok()) {
+      std::cerr << "replay_pipeline: " << s.error() << "\n";
+      return 2;
+    }
+    building = s.value();
+  }
+  rosbag::Bag bag;
+  try {
+    bag.open(bag_path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    std::cerr << "replay_pipeline: " << bag_path << ": " << e.what() << "\n";
+    return 2;
+  }
+  pipeline::LocalizationPipeline localization(config);
+  if (const auto e = localization.SetAGraph(building); !e.empty()) {
+    std::cerr << "replay_pipeline: unusable A-Graph: " << e << "\n";
+    return 2;
+  }
+  const Eigen::Isometry3d base_T_sensor = bag_replay::BaseTSensor(bag);
+  std::FILE* pose_file =
+      prefix.empty() ? nullptr : std::fopen((prefix + ".pose_bim.tum").c_str(), "w");
+  std::FILE* truth_file =
+      prefix.empty() ? nullptr : std::fopen((prefix + ".truth.tum").c_str(), "w");
+  if (!prefix.empty() && (!pose_file || !truth_file)) {
+    std::cerr << "replay_pipeline: cannot write " << prefix << ".*\n";
+    return 2;
+  }
+
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  double first = -1.0, last = 0.0, walked = 0.0, localized_at = -1.0, walked_at = 0.0;
+  Eigen::Vector3d last_position = Eigen::Vector3d::Constant(std::nan(""));
+  int poses = 0;
+  std::vector<sgraph::StampedPose> truths;
+  for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(bag_replay::SensorTopics()))) {
+    const double t = m.getTime().toSec();
+    if (first < 0.0) first = t;
+    if (max_duration > 0.0 && t - first > max_duration) break;
+    last = t;
+    if (auto odom = m.instantiate<nav_msgs::Odometry>()) {
+      const double stamp = odom->header.stamp.toSec();
+      const Eigen::Isometry3d odom_T_base = ros_conversions::FromPose(odom->pose.pose);
+      if (last_position.allFinite())
+        walked += (odom_T_base.translation() - last_position).head<2>().norm();
+      last_position = odom_T_base.translation();
+      const auto pose = localization.AddOdometry(stamp, odom_T_base);
+      if (!pose) continue;
+      if (localized_at < 0.0) localized_at = stamp, walked_at = walked;
+      ++poses;
+      if (pose_file) WriteTum(pose_file, stamp, *pose);
+    } else if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) {
+      const auto scan = ros_conversions::FromVelodyneMsg(*cloud);
+      if (scan.ok()) localization.AddScan(scan.value(), base_T_sensor);
+    } else if (auto truth = m.instantiate<geometry_msgs::PoseStamped>()) {
+      truths.push_back({truth->header.stamp.toSec(), ros_conversions::FromPose(truth->pose)});
+      if (truth_file) WriteTum(truth_file, truths.back().stamp, truths.back().pose);
+    }
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  if (pose_file) std::fclose(pose_file);
+  if (truth_file) std::fclose(truth_file);
+
+  const auto& times = localization.times();
+  const sgraph::SGraph graph = localization.Snapshot();
+  nlohmann::json out;
+  out["bag"] = bag_path;
+  out["building"] = building.building;
+  out["bag_seconds"] = last - first;
+  out["walked_m"] = walked;
+  out["localized"] = localized_at >= 0.0;
+  out["seconds_to_localize"] = localized_at < 0.0 ? -1.0 : localized_at - first;
+  out["distance_to_localize"] = localized_at < 0.0 ? -1.0 : walked_at;
+  out["poses"] = poses;
+  out["keyframes"] = graph.keyframes.size();
+  out["planes"] = graph.planes.size();
+  out["rooms"] = graph.rooms.size();
+  out["wall_seconds"] = wall;
+  out["real_time_factor"] = (last - first) / wall;
+  out["peak_rss_mib"] = bag_replay::PeakRssKb() / 1024.0;
+  out["stages"] = {{"scan", Stats(times.scan)},
+                   {"preprocess", Stats(times.preprocess)},
+                   {"plane_extraction", Stats(times.extraction)},
+                   {"association", Stats(times.association)},
+                   {"rooms", Stats(times.rooms)},
+                   {"optimization", Stats(times.optimization)},
+                   {"matching", Stats(times.matching)},
+                   {"merging", Stats(times.merging)}};
+  nlohmann::json events = nlohmann::json::array();
+  for (const auto& e : localization.events()) {
+    const Eigen::Vector3d xi = geometry::ToXYYaw(e.bim_T_map);
+    events.push_back({{"t", e.stamp - first},
+                      {"revision", e.revision},
+                      {"kind", e.kind},
+                      {"status", matching::ToString(e.status)},
+                      {"bim_x_map", {xi.x(), xi.y(), xi.z() * 180.0 / M_PI}},
+                      {"message", e.message}});
+    std::printf("%7.1f s rev %4u %-9s %-9s B_x_M (%.2f, %.2f, %.1f deg) %s\n", e.stamp - first,
+                e.revision, e.kind.c_str(), e.kind == "match" ? matching::ToString(e.status) : "",
+                xi.x(), xi.y(), xi.z() * 180.0 / M_PI, e.message.c_str());
+  }
+  out["events"] = events;
+  std::printf("bag %.1f s, walked %.1f m; %s; keyframes %zu, planes %zu, rooms %zu\n", last - first,
+              walked,
+              localized_at < 0.0 ? "NOT localized"
+                                 : ("localized after " + std::to_string(localized_at - first) +
+                                    " s, " + std::to_string(walked_at) + " m")
+                                       .c_str(),
+              graph.keyframes.size(), graph.planes.size(), graph.rooms.size());
+  std::printf("%-17s %7s %9s %9s %9s\n", "stage", "count", "median", "p99", "max [ms]");
+  for (const auto& [name, s] : out["stages"].items())
+    std::printf("%-17s %7d %9.2f %9.2f %9.2f\n", name.c_str(), s["count"].get<int>(),
+                s["median_ms"].get<double>(), s["p99_ms"].get<double>(), s["max_ms"].get<double>());
+  std::printf("real-time factor %.1fx (wall %.1f s), peak RSS %.1f MiB\n", (last - first) / wall,
+              wall, bag_replay::PeakRssKb() / 1024.0);
+  if (explain) bag_replay::ExplainMatch(building, graph, truths, config.matcher);
+  if (!prefix.empty()) {
+    std::ofstream(prefix + ".json") << out.dump(2) << "\n";
+  }
+  return 0;
+}
