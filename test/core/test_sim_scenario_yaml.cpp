@@ -102,6 +102,60 @@ TEST(SimScenarioYaml, ErrorsNameTheField) {
   ExpectError("building: b.ifc\n" + rooms + "}\nduration: -3\n", "duration");
 }
 
+TEST(SimScenarioYaml, ReadsDropoutsAndKidnap) {
+  const Result<ScenarioConfig> r = Parse(R"(
+building: b.ifc
+duration: 100
+trajectory: {rooms: [A, B]}
+sensor: {dropouts: [[10, 14.5], [20, 23]]}
+kidnap: {time: 55, waypoints: [[1, 2], [3, 4, 0.5]], start: {pose: [0, 2, 0]}, loop: true}
+)");
+  ASSERT_TRUE(r.ok()) << r.error();
+  const ScenarioConfig& c = r.value();
+  ASSERT_EQ(c.sensor.dropouts.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.sensor.dropouts[0].start, 10.0);
+  EXPECT_DOUBLE_EQ(c.sensor.dropouts[0].end, 14.5);
+  ASSERT_TRUE(c.kidnap.has_value());
+  EXPECT_DOUBLE_EQ(c.kidnap->time, 55.0);
+  ASSERT_EQ(c.kidnap->waypoints.size(), 2u);
+  EXPECT_DOUBLE_EQ(*c.kidnap->waypoints[1].yaw, 0.5);
+  EXPECT_TRUE(c.kidnap->start.pose.has_value());
+  EXPECT_TRUE(c.kidnap->loop);
+  // The second route walks with the trajectory's speeds.
+  const TrajectoryConfig t = c.kidnap->AsTrajectory(c.trajectory);
+  EXPECT_TRUE(t.rooms.empty());
+  EXPECT_EQ(t.waypoints.size(), 2u);
+  EXPECT_DOUBLE_EQ(t.speed, c.trajectory.speed);
+  EXPECT_FALSE(Parse("building: b.ifc\ntrajectory: {rooms: [A]}\n").value().kidnap);
+}
+
+TEST(SimScenarioYaml, DropoutAndKidnapErrorsNameTheField) {
+  const std::string base = "building: b.ifc\nduration: 60\ntrajectory: {rooms: [A, B]}\n";
+  ExpectError(base + "sensor: {dropouts: [1, 2]}\n",
+              "sensor.dropouts[0]: must be a list of 2 numbers");
+  ExpectError(base + "sensor: {dropouts: 5}\n", "sensor.dropouts: must be a list");
+  ExpectError(base + "sensor: {dropouts: [[3, 2]]}\n",
+              "sensor.dropouts[0]: must be [t_start, t_end] in s with 0 <= t_start < t_end");
+  ExpectError(base + "sensor: {dropouts: [[-1, 2]]}\n", "sensor.dropouts[0]: must be");
+  ExpectError(base + "sensor: {dropouts: [[1, 5], [4, 6]]}\n",
+              "sensor.dropouts[1]: must start after sensor.dropouts[0] ends (5 s), got 4");
+  ExpectError(base + "sensor: {dropouts: [[1, 2], [70, 75]]}\n",
+              "sensor.dropouts[1]: must start before the end of the bag (duration 60 s), got 70");
+  ExpectError(base + "sensor: {dropouts: [[1, x]]}\n", "sensor.dropouts[0][1]: must be a number");
+  ExpectError(base + "kidnap: {rooms: [A]}\n", "kidnap.time: missing");
+  ExpectError(base + "kidnap: {time: 0, rooms: [A]}\n", "kidnap.time: must be > 0");
+  ExpectError(base + "kidnap: {time: 60, rooms: [A]}\n",
+              "kidnap.time: must be before the end of the bag (duration 60 s), got 60");
+  ExpectError(base + "kidnap: {time: 5}\n", "kidnap: needs `rooms`");
+  ExpectError(base + "kidnap: {time: 5, rooms: [A], waypoints: [[1, 2]]}\n", "kidnap: give either");
+  ExpectError(base + "kidnap: {time: 5, rooms: [A], start: {room: A, pose: [0, 0, 0]}}\n",
+              "kidnap.start: give either");
+  ExpectError(base + "kidnap: {time: 5, rooms: [A], speed: 1}\n", "kidnap.speed: unknown key");
+  ExpectError(base + "kidnap: {time: 5, waypoints: [[1]]}\n",
+              "kidnap.waypoints[0]: must be a list of 2 to 3 numbers");
+  ExpectError(base + "kidnap: [5]\n", "kidnap: must be a mapping");
+}
+
 TEST(SimScenarioYaml, InvalidYamlGivesTheLine) {
   const Result<ScenarioConfig> r = Parse("building: b.ifc\ntrajectory: {rooms: [A, B]\n");
   ASSERT_FALSE(r.ok());

@@ -1,6 +1,7 @@
 """End-to-end checks of make_bag: the bag's topics, frames and tf tree, its point layout, that two
-runs give byte-identical bags, and that bad input fails cleanly (exit 2, the field named, no bag
-left behind). Runs with the system Python (rosbag): /usr/bin/python3 -m pytest test/ros.
+runs give byte-identical bags, the robustness options (scan dropouts, kidnap) as seen in the bag,
+and that bad input fails cleanly (exit 2, the field named, no bag left behind). Runs with the
+system Python (rosbag): /usr/bin/python3 -m pytest test/ros.
 
 IS_GRAPHS_MAKE_BAG names the binary (default: the workspace in .ws/).
 """
@@ -105,12 +106,64 @@ def test_two_runs_give_identical_bags(bag_path, tmp_path):
     assert digest(again) == digest(bag_path)
 
 
+ROBUSTNESS = """building: bim/office.ifc
+seed: 3
+duration: 6
+trajectory: {rooms: [Corridor, "102"], speed: 1.0, pause: 0.2}
+sensor: {dropouts: [[1.5, 2.5]]}
+kidnap: {time: 4, rooms: [Meeting, Corridor]}
+"""
+
+
+def test_dropouts_and_kidnap_in_the_bag(tmp_path):
+    scenario = tmp_path / "robust.yaml"
+    scenario.write_text(ROBUSTNESS)
+    out = str(tmp_path / "robust.bag")
+    r = make_bag(str(scenario), out, "--root", ROOT)
+    assert r.returncode == 0, r.stderr
+    with rosbag.Bag(out) as bag:
+        t0 = bag.get_start_time()
+        scans = [t.to_sec() - t0 for _, _, t in bag.read_messages(topics=["velodyne_points"])]
+        truth = [(t.to_sec() - t0, m.pose.position) for _, m, t in
+                 bag.read_messages(topics=["ground_truth/pose"])]
+        odom = [(t.to_sec() - t0, m.pose.pose.position) for _, m, t in
+                bag.read_messages(topics=["odom"])]
+    # Scans sweeping any of [1.5, 2.5) are missing: the last before is recorded at 1.5 s, the
+    # first after at 2.6 s (sweep 2.5-2.6).
+    assert len(scans) == 60 - 10
+    assert not [t for t in scans if 1.5 + 1e-6 < t < 2.6 - 1e-6]
+    assert [t for t in scans if 1.4 < t < 2.7] == pytest.approx([1.5, 2.6], abs=1e-6)
+    # Odometry and ground truth go on at 50 Hz.
+    assert len(odom) == len(truth) == 301
+    assert np.diff([t for t, _ in odom]) == pytest.approx(0.02, abs=1e-6)
+
+    def steps(poses):
+        xy = np.array([(p.x, p.y) for _, p in poses])
+        return np.linalg.norm(np.diff(xy, axis=0), axis=1)
+
+    # At 4 s the ground truth jumps (carried to the meeting room); the odometry does not.
+    jump = int(np.argmax(steps(truth)))
+    assert truth[jump + 1][0] == pytest.approx(4.0, abs=1e-6)
+    assert steps(truth)[jump] > 3.0
+    assert steps(odom)[jump] == 0.0
+    assert steps(odom).max() < 0.03  # 1 m/s at 50 Hz
+    # Deterministic with both as well.
+    again = str(tmp_path / "again.bag")
+    assert make_bag(str(scenario), again, "--root", ROOT).returncode == 0
+    with open(out, "rb") as a, open(again, "rb") as b:
+        assert hashlib.sha256(a.read()).digest() == hashlib.sha256(b.read()).digest()
+
+
 @pytest.mark.parametrize("yaml_text, field", [
     ("building: bim/no_such_building.ifc\ntrajectory: {rooms: [A]}\n", "building:"),
     ("building: bim/office.ifc\ntrajectory: {rooms: [Corridor, \"101\"], speed: -1}\n",
      "trajectory.speed"),
     ("building: bim/office.ifc\ntrajectory: {rooms: [Corridor, Lobby]}\n", "trajectory.rooms[1]"),
     ("building: bim/office.ifc\ntrajectory: {rooms: [Corridor\n", "invalid YAML"),
+    ("building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\nsensor: {dropouts: [[3, 2]]}\n",
+     "sensor.dropouts[0]"),
+    ("building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\n"
+     "kidnap: {time: 2, rooms: [Lobby]}\n", "kidnap.rooms[0]"),
 ])
 def test_bad_input_fails_cleanly(tmp_path, yaml_text, field):
     scenario = tmp_path / "bad.yaml"

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "is_graphs/sim/scenario_config.h"
 #include "is_graphs/sim/trajectory.h"
@@ -26,19 +27,36 @@ class GaitModel {
 };
 
 /// base_link in bim at time t: the planar trajectory at floor height + standing height, with
-/// the gait sway on top.
+/// the gait sway on top. A kidnapped robot has more than one leg: from each carry's time on it
+/// walks that carry's trajectory (whose t = 0 is the carry's time).
 class RobotMotion {
  public:
   RobotMotion(Trajectory trajectory, const GaitConfig& gait, double floor_z)
-      : trajectory_(std::move(trajectory)), gait_(gait), floor_z_(floor_z) {}
+      : gait_(gait), floor_z_(floor_z) {
+    legs_.push_back({0.0, std::move(trajectory)});
+  }
+
+  /// From `time` on (> the last leg's start), the robot walks `next`: it is carried there
+  /// instantly.
+  void Carry(double time, Trajectory next) { legs_.push_back({time, std::move(next)}); }
 
   Eigen::Isometry3d BasePose(double t) const;
-  const Trajectory& trajectory() const { return trajectory_; }
+  /// The leg walked at time t: 0 before the first carry, 1 after it, ...
+  int LegAt(double t) const;
+  /// The trajectory of leg i, and when it starts.
+  const Trajectory& trajectory(int leg = 0) const { return legs_[leg].trajectory; }
+  double LegStart(int leg) const { return legs_[leg].start; }
+  int NumLegs() const { return static_cast<int>(legs_.size()); }
   double floor_z() const { return floor_z_; }
-  double Duration() const { return trajectory_.Duration(); }
+  /// The end of the last leg.
+  double Duration() const { return legs_.back().start + legs_.back().trajectory.Duration(); }
 
  private:
-  Trajectory trajectory_;
+  struct Leg {
+    double start;
+    Trajectory trajectory;
+  };
+  std::vector<Leg> legs_;
   GaitModel gait_;
   double floor_z_;
 };

@@ -23,13 +23,17 @@ struct OdometrySample {
 /// start pose, heading along it. Each step integrates the true planar body-frame increment with
 /// a scale error, a yaw bias per metre and per second, and random walks (per √m walked) in
 /// translation and yaw; z, roll and pitch are kept true (an IMU and the leg kinematics observe
-/// them directly). Deterministic given the seed; call Step at increasing times.
+/// them directly). Deterministic given the seed; call Step at increasing times. A carry (see
+/// Carried) is not seen: the odometry holds its pose across the jump of the truth.
 class OdometryDrift {
  public:
   OdometryDrift(const OdometryConfig& config, std::uint64_t seed, double floor_z);
 
   /// The odometry at time t for the true base_link pose in bim.
   OdometrySample Step(double t, const Eigen::Isometry3d& bim_T_base);
+  /// The robot was carried (kidnapped) since the last Step: the legs saw no walking, so the next
+  /// Step keeps the odometry's planar pose (zero velocity) and integrates from the new pose on.
+  void Carried() { carried_ = started_; }
   /// The odom frame in bim (fixed once the first Step has run).
   const Eigen::Isometry3d& bim_T_odom() const { return bim_T_odom_; }
   /// True distance walked so far, m.
@@ -40,6 +44,7 @@ class OdometryDrift {
   std::mt19937_64 rng_;
   double floor_z_;
   bool started_{false};
+  bool carried_{false};
   double last_t_{0.0};
   Eigen::Vector3d last_true_{Eigen::Vector3d::Zero()};  // planar x, y, yaw in bim
   Eigen::Vector3d odom_{Eigen::Vector3d::Zero()};       // planar x, y, yaw in odom

@@ -27,9 +27,10 @@ struct Route {
 /// wall face, crosses the doorway straight along the wall normal to the point as far on the
 /// other side, and walks on to the next room's interior point; in non-convex rooms it goes
 /// around corners through inset polygon vertices. With `config.waypoints` the waypoints are
-/// used as given. Errors name the field: "trajectory.rooms[2] ('Kitchen'): not reachable from
-/// 'Hall' through the doorways of storey 0".
-Result<Route> PlanRoute(const agraph::AGraph& graph, int storey, const TrajectoryConfig& config);
+/// used as given. Errors name the field under `field` (the YAML section the route comes from):
+/// "trajectory.rooms[2] ('Kitchen'): not reachable from 'Hall' through the doorways of storey 0".
+Result<Route> PlanRoute(const agraph::AGraph& graph, int storey, const TrajectoryConfig& config,
+                        const std::string& field = "trajectory");
 
 /// Shortest path inside a room's polygon from a to b keeping `clearance` from the edges where
 /// possible (straight when visible, else through inset polygon corners). Includes b, not a.

@@ -14,6 +14,12 @@
 namespace is_graphs {
 namespace sim {
 
+/// A time interval [start, end) in s after the bag start.
+struct TimeWindow {
+  double start{0.0};
+  double end{0.0};
+};
+
 /// Velodyne VLP-16 as the velodyne_pointcloud driver publishes it.
 struct Vlp16Config {
   double rotation_rate_hz{10.0};       // scans per second
@@ -26,6 +32,8 @@ struct Vlp16Config {
   double dropout_probability{0.0};     // random missing returns
   double intensity_noise_stddev{2.0};  // on the 0..100 diffuse reflectivity scale
   double azimuth_offset_deg{0.0};      // azimuth (clockwise, from +x) of each scan's first firing
+  // Sensor outages (increasing, disjoint): a scan whose sweep overlaps one is not published.
+  std::vector<TimeWindow> dropouts;
   std::string Validate() const;
 };
 
@@ -74,6 +82,20 @@ struct OdometryConfig {
   double translation_random_walk{0.0};  // m / √m walked (per axis)
   double yaw_random_walk{0.0};          // rad / √m walked
   std::string Validate() const;
+};
+
+/// Kidnapped robot: at `time` the robot is carried (instantly) to the start of a second route
+/// and walks it with the trajectory's speeds and pause. The ground truth jumps; the odometry
+/// does not see the carry (it holds its pose across the jump, then integrates the new walk).
+struct KidnapConfig {
+  double time{0.0};                       // s after the start, > 0
+  std::vector<std::string> rooms;         // the second route, as `trajectory.rooms`, or
+  std::vector<WaypointConfig> waypoints;  // as `trajectory.waypoints` (exactly one of the two)
+  StartConfig start;                      // default: the first room / the first waypoint
+  bool loop{false};                       // walk it back and forth until `duration`
+  std::string Validate() const;
+  /// The trajectory of the second route: `base`'s speeds and pause with this route.
+  TrajectoryConfig AsTrajectory(const TrajectoryConfig& base) const;
 };
 
 /// A reference to an A-Graph wall: by `name` (must be unique on the storey) or by A-Graph `id`.
@@ -134,6 +156,7 @@ struct ScenarioConfig {
   double duration{0.0};       // s; 0 = until the route ends (+ the final pause)
   double start_time{1000.0};  // s, ROS time of the first message
   TrajectoryConfig trajectory;
+  std::optional<KidnapConfig> kidnap;
   Vlp16Config sensor;
   GaitConfig gait;
   OdometryConfig odometry;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@ struct Simulation {
   SceneMesh scene;      // as built
   std::unique_ptr<EmbreeScene> embree;
   Route route;
+  std::optional<Route> kidnap_route;  // the route after the carry (`kidnap`)
   std::unique_ptr<RobotMotion> motion;
   std::unique_ptr<Vlp16Model> sensor;
   Eigen::Isometry3d base_T_velodyne{Eigen::Isometry3d::Identity()};
@@ -38,8 +40,11 @@ struct Simulation {
   double duration{0.0};          // of the bag, s
   std::vector<std::string> log;  // what was built, for the user
 
-  /// Number of complete scans in the bag.
+  /// Number of complete scans in the bag (published or dropped).
   int NumScans() const;
+  /// True when scan k (sweeping [k, k + 1) scan periods) overlaps a `sensor.dropouts` window:
+  /// it is not published.
+  bool ScanDropped(int k) const;
   /// A fresh odometry model (the drift is a stateful walk over the 50 Hz samples).
   OdometryDrift MakeOdometry() const {
     return OdometryDrift(config.odometry, config.seed, floor_z);

@@ -22,7 +22,8 @@ class SimulationSink {
 };
 
 struct RunStats {
-  int scans{0};
+  int scans{0};          // published
+  int dropped_scans{0};  // in `sensor.dropouts`
   long odometry_samples{0};
   std::size_t points{0};
 };
@@ -31,7 +32,8 @@ struct RunStats {
 /// scans at the rotation rate, delivered to `sink` in time order (samples up to a scan's end
 /// before the scan). With `pipelined`, the next scan is ray-cast on a second thread while the
 /// sink handles the current one; the output is identical either way (each scan draws from its
-/// own random stream).
+/// own random stream). Scans in a dropout window are neither simulated nor delivered; the
+/// odometry runs on. At a kidnap's carry the odometry is told (OdometryDrift::Carried).
 RunStats RunSimulation(const Simulation& sim, SimulationSink& sink, bool pipelined = true);
 
 }  // namespace sim

@@ -21,8 +21,18 @@ Eigen::Vector3d GaitModel::Sway(double t, double activity) const {
                                     config_.bob_amplitude * std::sin(w * t));
 }
 
+int RobotMotion::LegAt(double t) const {
+  // A carry at a multiple of the scan or odometry period starts exactly there whichever way
+  // k * period rounds.
+  constexpr double kTolerance = 1e-9;
+  int leg = 0;
+  while (leg + 1 < NumLegs() && t >= legs_[leg + 1].start - kTolerance) ++leg;
+  return leg;
+}
+
 Eigen::Isometry3d RobotMotion::BasePose(double t) const {
-  const PlanarState state = trajectory_.StateAt(t);
+  const Leg& leg = legs_[LegAt(t)];
+  const PlanarState state = leg.trajectory.StateAt(t - leg.start);
   const Eigen::Vector3d sway = gait_.Sway(t, gait_.Activity(state));
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = (Eigen::AngleAxisd(state.pose.z(), Eigen::Vector3d::UnitZ()) *

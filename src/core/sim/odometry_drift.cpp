@@ -25,6 +25,8 @@ OdometrySample OdometryDrift::Step(double t, const Eigen::Isometry3d& bim_T_base
   if (!started_) {
     started_ = true;
     bim_T_odom_ = geometry::IsometryFromXYYaw(truth.x(), truth.y(), truth.z(), floor_z_);
+  } else if (carried_) {
+    carried_ = false;  // no increment: the planar pose holds, the velocity is zero
   } else {
     const double dt = t - last_t_;
     // True increment in the previous body frame.

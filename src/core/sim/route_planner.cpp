@@ -115,7 +115,8 @@ std::vector<Eigen::Vector2d> PathInsideRoom(const std::vector<Eigen::Vector2d>& 
   return out;
 }
 
-Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryConfig& config) {
+Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryConfig& config,
+                        const std::string& field) {
   using R = Result<Route>;
   Route route;
   const TrajectoryConfig& c = config;
@@ -127,7 +128,7 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
       route.start = *c.start.pose;
     } else if (!c.start.room.empty()) {
       const Result<int> room = FindRoom(g, storey, c.start.room);
-      if (!room.ok()) return R::Error("trajectory.start.room: " + room.error());
+      if (!room.ok()) return R::Error(field + ".start.room: " + room.error());
       route.start.head<2>() = RoomInteriorPoint(g.rooms[room.value()]);
     } else {
       route.start.head<2>() = route.waypoints.front().position;
@@ -146,25 +147,25 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
   std::vector<int> targets;
   std::vector<std::string> fields;
   for (std::size_t i = 0; i < c.rooms.size(); ++i) {
-    const std::string field = "trajectory.rooms[" + std::to_string(i) + "]";
+    const std::string f = field + ".rooms[" + std::to_string(i) + "]";
     const Result<int> room = FindRoom(g, storey, c.rooms[i]);
-    if (!room.ok()) return R::Error(field + ": " + room.error());
+    if (!room.ok()) return R::Error(f + ": " + room.error());
     targets.push_back(room.value());
-    fields.push_back(field + " ('" + c.rooms[i] + "')");
+    fields.push_back(f + " ('" + c.rooms[i] + "')");
   }
   if (!c.start.room.empty()) {
     const Result<int> room = FindRoom(g, storey, c.start.room);
-    if (!room.ok()) return R::Error("trajectory.start.room: " + room.error());
+    if (!room.ok()) return R::Error(field + ".start.room: " + room.error());
     if (room.value() != targets.front()) {
       targets.insert(targets.begin(), room.value());
-      fields.insert(fields.begin(), "trajectory.start.room ('" + c.start.room + "')");
+      fields.insert(fields.begin(), field + ".start.room ('" + c.start.room + "')");
     }
   }
   Eigen::Vector2d position = RoomInteriorPoint(g.rooms[targets.front()]);
   if (c.start.pose) {
     position = c.start.pose->head<2>();
     if (!PointInPolygon(g.rooms[targets.front()].polygon, position)) {
-      return R::Error("trajectory.start.pose: not inside the first room '" +
+      return R::Error(field + ".start.pose: not inside the first room '" +
                       g.rooms[targets.front()].name + "'");
     }
   }

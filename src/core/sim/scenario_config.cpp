@@ -34,6 +34,42 @@ std::string First(std::initializer_list<std::string> errors) {
   return "";
 }
 
+// "sensor.dropouts[i]: ..." for the first window that is not 0 <= start < end <= 3600 or
+// starts before the previous one ends.
+std::string Dropouts(const std::vector<TimeWindow>& dropouts) {
+  for (std::size_t i = 0; i < dropouts.size(); ++i) {
+    const TimeWindow& w = dropouts[i];
+    std::ostringstream out;
+    out << "sensor.dropouts[" << i << "]: ";
+    if (!(w.start >= 0.0 && w.start < w.end && w.end <= 3600.0)) {
+      out << "must be [t_start, t_end] in s with 0 <= t_start < t_end <= 3600, got [" << w.start
+          << ", " << w.end << "]";
+      return out.str();
+    }
+    if (i > 0 && w.start < dropouts[i - 1].end) {
+      out << "must start after sensor.dropouts[" << i - 1 << "] ends (" << dropouts[i - 1].end
+          << " s), got " << w.start;
+      return out.str();
+    }
+  }
+  return "";
+}
+
+// The route fields shared by `trajectory` and `kidnap`.
+std::string RouteChoice(const std::string& f, const std::vector<std::string>& rooms,
+                        const std::vector<WaypointConfig>& waypoints, const StartConfig& start) {
+  if (rooms.empty() && waypoints.empty()) {
+    return f + ": needs `rooms` (room names to visit) or `waypoints`";
+  }
+  if (!rooms.empty() && !waypoints.empty()) {
+    return f + ": give either `rooms` or `waypoints`, not both";
+  }
+  if (!start.room.empty() && start.pose) {
+    return f + ".start: give either `room` or `pose`, not both";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string Vlp16Config::Validate() const {
@@ -47,7 +83,8 @@ std::string Vlp16Config::Validate() const {
                 Range("sensor.max_incidence_deg", max_incidence_deg, 0.0, 90.0, "deg"),
                 Range("sensor.dropout_probability", dropout_probability, 0.0, 1.0),
                 Range("sensor.intensity_noise_stddev", intensity_noise_stddev, 0.0, 100.0),
-                Range("sensor.azimuth_offset_deg", azimuth_offset_deg, -360.0, 360.0, "deg")});
+                Range("sensor.azimuth_offset_deg", azimuth_offset_deg, -360.0, 360.0, "deg"),
+                Dropouts(dropouts)});
 }
 
 std::string GaitConfig::Validate() const {
@@ -60,22 +97,32 @@ std::string GaitConfig::Validate() const {
 }
 
 std::string TrajectoryConfig::Validate() const {
-  if (rooms.empty() && waypoints.empty()) {
-    return "trajectory: needs `rooms` (room names to visit) or `waypoints`";
-  }
-  if (!rooms.empty() && !waypoints.empty()) {
-    return "trajectory: give either `rooms` or `waypoints`, not both";
-  }
-  if (!start.room.empty() && start.pose) {
-    return "trajectory.start: give either `room` or `pose`, not both";
-  }
   return First(
-      {Range("trajectory.speed", speed, 0.3, 1.2, "m/s"),
+      {RouteChoice("trajectory", rooms, waypoints, start),
+       Range("trajectory.speed", speed, 0.3, 1.2, "m/s"),
        Positive("trajectory.acceleration", acceleration, 10.0, "m/s^2"),
        Positive("trajectory.turn_rate_deg", turn_rate_deg, 360.0, "deg/s"),
        Positive("trajectory.turn_acceleration_deg", turn_acceleration_deg, 3600.0, "deg/s^2"),
        Range("trajectory.pause", pause, 0.0, 600.0, "s"),
        Range("trajectory.doorway_clearance", doorway_clearance, 0.3, 5.0, "m")});
+}
+
+std::string KidnapConfig::Validate() const {
+  if (!(time > 0.0 && time <= 3600.0)) {
+    std::ostringstream out;
+    out << "kidnap.time: must be > 0 and <= 3600 s, got " << time;
+    return out.str();
+  }
+  return RouteChoice("kidnap", rooms, waypoints, start);
+}
+
+TrajectoryConfig KidnapConfig::AsTrajectory(const TrajectoryConfig& base) const {
+  TrajectoryConfig t = base;
+  t.rooms = rooms;
+  t.waypoints = waypoints;
+  t.start = start;
+  t.loop = loop;
+  return t;
 }
 
 std::string OdometryConfig::Validate() const {
@@ -96,9 +143,23 @@ std::string ScenarioConfig::Validate() const {
   if (!(start_time > 0.0 && start_time < 4.0e9)) {
     return "start_time: must be a positive ROS time in seconds, got " + std::to_string(start_time);
   }
-  std::string e =
-      First({trajectory.Validate(), sensor.Validate(), gait.Validate(), odometry.Validate()});
+  std::string e = First({trajectory.Validate(), kidnap ? kidnap->Validate() : "", sensor.Validate(),
+                         gait.Validate(), odometry.Validate()});
   if (!e.empty()) return e;
+  if (duration > 0.0) {  // (with duration 0 the route's end is known only once planned)
+    std::ostringstream out;
+    if (kidnap && kidnap->time >= duration) {
+      out << "kidnap.time: must be before the end of the bag (duration " << duration << " s), got "
+          << kidnap->time;
+    }
+    for (std::size_t i = 0; i < sensor.dropouts.size() && out.str().empty(); ++i) {
+      if (sensor.dropouts[i].start >= duration) {
+        out << "sensor.dropouts[" << i << "]: must start before the end of the bag (duration "
+            << duration << " s), got " << sensor.dropouts[i].start;
+      }
+    }
+    if (!out.str().empty()) return out.str();
+  }
   for (std::size_t i = 0; i < scene.deviations.size(); ++i) {
     const DeviationConfig& d = scene.deviations[i];
     const std::string f = "scene.deviations[" + std::to_string(i) + "]";

@@ -13,12 +13,10 @@ namespace {
 
 using namespace yaml_fields;  // NOLINT(build/namespaces): this file's own helpers
 
-void ParseTrajectory(const YAML::Node& n, TrajectoryConfig* t) {
-  const std::string f = "trajectory";
-  CheckMap(n, f,
-           {"rooms", "waypoints", "start", "speed", "acceleration", "turn_rate_deg",
-            "turn_acceleration_deg", "pause", "doorway_clearance", "loop"});
-  if (n["rooms"]) t->rooms = Strings(n["rooms"], f + ".rooms");
+// The route keys shared by `trajectory` and `kidnap`: rooms, waypoints, start.
+void ParseRoute(const YAML::Node& n, const std::string& f, std::vector<std::string>* rooms,
+                std::vector<WaypointConfig>* waypoints, StartConfig* start) {
+  if (n["rooms"]) *rooms = Strings(n["rooms"], f + ".rooms");
   if (n["waypoints"]) {
     if (!n["waypoints"].IsSequence()) Fail(f + ".waypoints", "must be a list of [x, y(, yaw)]");
     for (std::size_t i = 0; i < n["waypoints"].size(); ++i) {
@@ -27,17 +25,25 @@ void ParseTrajectory(const YAML::Node& n, TrajectoryConfig* t) {
       WaypointConfig w;
       w.position = {v[0], v[1]};
       if (v.size() == 3) w.yaw = v[2];
-      t->waypoints.push_back(w);
+      waypoints->push_back(w);
     }
   }
   if (n["start"]) {
     CheckMap(n["start"], f + ".start", {"room", "pose"});
-    Get(n["start"], f + ".start", "room", &t->start.room);
+    Get(n["start"], f + ".start", "room", &start->room);
     if (n["start"]["pose"]) {
       const std::vector<double> v = Numbers(n["start"]["pose"], f + ".start.pose", 3, 3);
-      t->start.pose = Eigen::Vector3d(v[0], v[1], v[2]);
+      start->pose = Eigen::Vector3d(v[0], v[1], v[2]);
     }
   }
+}
+
+void ParseTrajectory(const YAML::Node& n, TrajectoryConfig* t) {
+  const std::string f = "trajectory";
+  CheckMap(n, f,
+           {"rooms", "waypoints", "start", "speed", "acceleration", "turn_rate_deg",
+            "turn_acceleration_deg", "pause", "doorway_clearance", "loop"});
+  ParseRoute(n, f, &t->rooms, &t->waypoints, &t->start);
   Get(n, f, "speed", &t->speed);
   Get(n, f, "acceleration", &t->acceleration);
   Get(n, f, "turn_rate_deg", &t->turn_rate_deg);
@@ -47,12 +53,23 @@ void ParseTrajectory(const YAML::Node& n, TrajectoryConfig* t) {
   Get(n, f, "loop", &t->loop);
 }
 
+KidnapConfig ParseKidnap(const YAML::Node& n) {
+  const std::string f = "kidnap";
+  CheckMap(n, f, {"time", "rooms", "waypoints", "start", "loop"});
+  KidnapConfig k;
+  if (!n["time"]) Fail(f + ".time", "missing (s after the start when the robot is carried)");
+  Get(n, f, "time", &k.time);
+  ParseRoute(n, f, &k.rooms, &k.waypoints, &k.start);
+  Get(n, f, "loop", &k.loop);
+  return k;
+}
+
 void ParseSensor(const YAML::Node& n, Vlp16Config* s) {
   const std::string f = "sensor";
   CheckMap(n, f,
            {"rotation_rate_hz", "azimuth_resolution_deg", "min_range", "max_range",
             "range_noise_stddev", "range_resolution", "max_incidence_deg", "dropout_probability",
-            "intensity_noise_stddev", "azimuth_offset_deg"});
+            "intensity_noise_stddev", "azimuth_offset_deg", "dropouts"});
   Get(n, f, "rotation_rate_hz", &s->rotation_rate_hz);
   Get(n, f, "azimuth_resolution_deg", &s->azimuth_resolution_deg);
   Get(n, f, "min_range", &s->min_range);
@@ -63,6 +80,14 @@ void ParseSensor(const YAML::Node& n, Vlp16Config* s) {
   Get(n, f, "dropout_probability", &s->dropout_probability);
   Get(n, f, "intensity_noise_stddev", &s->intensity_noise_stddev);
   Get(n, f, "azimuth_offset_deg", &s->azimuth_offset_deg);
+  if (n["dropouts"]) {
+    const YAML::Node& d = n["dropouts"];
+    if (!d.IsSequence()) Fail(f + ".dropouts", "must be a list of [t_start, t_end]");
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      const std::vector<double> v = Numbers(d[i], f + ".dropouts[" + std::to_string(i) + "]", 2, 2);
+      s->dropouts.push_back({v[0], v[1]});
+    }
+  }
 }
 
 void ParseGait(const YAML::Node& n, GaitConfig* g) {
@@ -94,7 +119,7 @@ void ParseOdometry(const YAML::Node& n, OdometryConfig* o) {
 ScenarioConfig ParseRoot(const YAML::Node& root) {
   CheckMap(root, "",
            {"name", "description", "building", "storey", "seed", "duration", "start_time",
-            "trajectory", "sensor", "gait", "odometry", "scene"});
+            "trajectory", "kidnap", "sensor", "gait", "odometry", "scene"});
   ScenarioConfig c;
   Get(root, "", "name", &c.name);
   if (!root["building"]) Fail("building", "missing (path of an .ifc or .agraph.json file)");
@@ -107,6 +132,7 @@ ScenarioConfig ParseRoot(const YAML::Node& root) {
   Get(root, "", "start_time", &c.start_time);
   if (!root["trajectory"]) Fail("trajectory", "missing");
   ParseTrajectory(root["trajectory"], &c.trajectory);
+  if (root["kidnap"]) c.kidnap = ParseKidnap(root["kidnap"]);
   if (root["sensor"]) ParseSensor(root["sensor"], &c.sensor);
   if (root["gait"]) ParseGait(root["gait"], &c.gait);
   if (root["odometry"]) ParseOdometry(root["odometry"], &c.odometry);

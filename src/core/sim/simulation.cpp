@@ -23,10 +23,74 @@ std::string Xy(const Eigen::Vector2d& p) {
   return out.str();
 }
 
+// "" when every leg of `route` is walkable in the scene as built, else the error, naming
+// `field` (an added partition may close a door).
+std::string CheckRoute(const EmbreeScene& scene, const Route& route, double floor_z,
+                       const std::string& field) {
+  Eigen::Vector2d from = route.start.head<2>();
+  for (const PlanarWaypoint& w : route.waypoints) {
+    const std::string blocked = CheckWalkable(scene, from, w.position, floor_z);
+    if (!blocked.empty()) {
+      return field + ": the walk from " + Xy(from) + " to " + Xy(w.position) + " is " + blocked +
+             " in the scene as built";
+    }
+    from = w.position;
+  }
+  return "";
+}
+
+std::string Seconds(double s) {
+  std::ostringstream out;
+  out << s << " s";
+  return out.str();
+}
+
+// The robot's motion over `wanted` s (0: until the route ends): the trajectory, and with a
+// kidnap before the end, the carry to the second route. Sets sim->motion and sim->duration.
+std::string BuildMotion(Simulation* sim, double wanted) {
+  const ScenarioConfig& c = sim->config;
+  const bool kidnapped = c.kidnap && (wanted <= 0.0 || c.kidnap->time < wanted);
+  Result<Trajectory> first = Trajectory::Build(sim->route.start, sim->route.waypoints, c.trajectory,
+                                               kidnapped ? c.kidnap->time : wanted);
+  if (!first.ok()) return first.error();
+  sim->log.push_back("trajectory: " + std::to_string(first.value().PathLength()) + " m in " +
+                     std::to_string(first.value().Duration()) + " s");
+  sim->motion = std::make_unique<RobotMotion>(std::move(first).value(), c.gait, sim->floor_z);
+  if (c.kidnap && !kidnapped) {
+    sim->log.push_back("kidnap: at " + Seconds(c.kidnap->time) + ", after the end of the bag (" +
+                       Seconds(wanted) + "): not simulated");
+  } else if (kidnapped) {
+    const Route& r = *sim->kidnap_route;
+    Result<Trajectory> second =
+        Trajectory::Build(r.start, r.waypoints, c.kidnap->AsTrajectory(c.trajectory),
+                          wanted > 0.0 ? wanted - c.kidnap->time : 0.0);
+    if (!second.ok()) return "kidnap: " + second.error();
+    const Eigen::Vector2d from = sim->motion->trajectory().StateAt(c.kidnap->time).pose.head<2>();
+    sim->log.push_back("kidnap: at " + Seconds(c.kidnap->time) + " carried from " + Xy(from) +
+                       " to " + Xy(r.start.head<2>()) + ", then " +
+                       std::to_string(second.value().PathLength()) + " m in " +
+                       std::to_string(second.value().Duration()) + " s");
+    sim->motion->Carry(c.kidnap->time, std::move(second).value());
+  }
+  sim->duration = wanted > 0.0 ? wanted : sim->motion->Duration();
+  sim->log.push_back("bag: " + Seconds(sim->duration));
+  return "";
+}
+
 }  // namespace
 
 int Simulation::NumScans() const {
   return static_cast<int>(std::floor(duration * config.sensor.rotation_rate_hz + 1e-9));
+}
+
+bool Simulation::ScanDropped(int k) const {
+  // Overlap of [k, k + 1) periods with a window; 1 ns slack against k * period rounding.
+  const double period = 1.0 / config.sensor.rotation_rate_hz;
+  const double begin = k * period, end = (k + 1) * period;
+  for (const TimeWindow& w : config.sensor.dropouts) {
+    if (begin < w.end - 1e-9 && end > w.start + 1e-9) return true;
+  }
+  return false;
 }
 
 std::string DefaultBimCacheDir(const std::string& base_dir) {
@@ -114,6 +178,15 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
   if (!route.ok()) return R::Error(route.error());
   sim->route = route.value();
   for (const std::string& line : sim->route.description) sim->log.push_back("route: " + line);
+  if (config.kidnap) {  // the route after the carry
+    const Result<Route> second = PlanRoute(
+        sim->graph, sim->storey, config.kidnap->AsTrajectory(config.trajectory), "kidnap");
+    if (!second.ok()) return R::Error(second.error());
+    sim->kidnap_route = second.value();
+    for (const std::string& line : second.value().description) {
+      sim->log.push_back("kidnap route: " + line);
+    }
+  }
   const double elevation = sim->graph.storeys[sim->storey].elevation;
   sim->floor_z =
       FloorHeightAt(mesh.value(), sim->route.start.head<2>(), elevation + 1.0).value_or(elevation);
@@ -129,31 +202,24 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
   if (!embree.ok()) return R::Error(embree.error());
   sim->embree = std::move(embree).value();
 
-  // The route must be walkable in the scene as built (an added partition may close a door).
-  Eigen::Vector2d from = sim->route.start.head<2>();
-  for (std::size_t i = 0; i < sim->route.waypoints.size(); ++i) {
-    const Eigen::Vector2d to = sim->route.waypoints[i].position;
-    const std::string blocked = CheckWalkable(*sim->embree, from, to, sim->floor_z);
-    if (!blocked.empty()) {
-      return R::Error("trajectory: the walk from " + Xy(from) + " to " + Xy(to) + " is " + blocked +
-                      " in the scene as built");
-    }
-    from = to;
+  // The routes must be walkable in the scene as built.
+  std::string e = CheckRoute(*sim->embree, sim->route, sim->floor_z, "trajectory");
+  if (e.empty() && sim->kidnap_route) {
+    e = CheckRoute(*sim->embree, *sim->kidnap_route, sim->floor_z, "kidnap");
   }
+  if (!e.empty()) return R::Error(e);
 
   // Motion: duration from the scenario (scaled), else the route's.
-  const double wanted = config.duration * duration_scale;
-  Result<Trajectory> trajectory =
-      Trajectory::Build(sim->route.start, sim->route.waypoints, config.trajectory, wanted);
-  if (!trajectory.ok()) return R::Error(trajectory.error());
-  sim->duration = wanted > 0.0 ? wanted : trajectory.value().Duration();
-  sim->log.push_back("trajectory: " + std::to_string(trajectory.value().PathLength()) + " m in " +
-                     std::to_string(trajectory.value().Duration()) + " s; bag " +
-                     std::to_string(sim->duration) + " s");
-  sim->motion =
-      std::make_unique<RobotMotion>(std::move(trajectory).value(), config.gait, sim->floor_z);
+  e = BuildMotion(sim.get(), config.duration * duration_scale);
+  if (!e.empty()) return R::Error(e);
 
   sim->sensor = std::make_unique<Vlp16Model>(config.sensor);
+  if (!config.sensor.dropouts.empty()) {
+    int dropped = 0;
+    for (int k = 0; k < sim->NumScans(); ++k) dropped += sim->ScanDropped(k) ? 1 : 0;
+    sim->log.push_back("sensor.dropouts: " + std::to_string(dropped) + " of " +
+                       std::to_string(sim->NumScans()) + " scans not published");
+  }
   sim->base_T_velodyne.translation() = config.velodyne_offset;
   sim->scans = std::make_unique<ScanSimulator>(
       *sim->embree, sim->scene, *sim->sensor, *sim->motion, sim->base_T_velodyne,

@@ -5,6 +5,8 @@
 // Topics: velodyne_points (sensor_msgs/PointCloud2, XYZIRT, frame velodyne, 10 Hz), odom
 // (nav_msgs/Odometry, odom -> base_link, 50 Hz), tf (odom -> base_link), tf_static
 // (base_link -> velodyne, latched), ground_truth/pose (geometry_msgs/PoseStamped in bim, 50 Hz).
+// Scans in `sensor.dropouts` windows are missing; a `kidnap` makes ground_truth/pose jump while
+// odom holds its pose.
 // The simulation is the ROS-free core (is_graphs/sim); this file only converts its outputs to
 // messages. The bag is written to OUT.bag.tmp and renamed when complete. Errors go to stderr,
 // naming the YAML field; exit status 2.
@@ -217,8 +219,11 @@ int Run(const Args& args) {
     bag.close();
     if (!args.quiet) {
       std::cerr << "make_bag: " << stats.scans << " scans ("
-                << stats.points / std::max(1, stats.scans) << " points each on average), "
-                << stats.odometry_samples << " odometry samples, " << sim.duration << " s\n";
+                << stats.points / std::max(1, stats.scans) << " points each on average"
+                << (stats.dropped_scans ? ", " + std::to_string(stats.dropped_scans) + " dropped"
+                                        : std::string())
+                << "), " << stats.odometry_samples << " odometry samples, " << sim.duration
+                << " s\n";
     }
   } catch (const std::exception& e) {
     std::remove(tmp.c_str());
