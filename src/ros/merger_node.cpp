@@ -69,6 +69,10 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "min_room_inliers", c.min_room_inliers);
   Read(pnh, "max_chi2_per_dof", c.max_chi2_per_dof);
   Read(pnh, "max_jump_translation", c.max_jump_translation);
+  Read(pnh, "recent_keyframes", c.recent_keyframes);
+  Read(pnh, "recent_min_length", c.recent_min_length);
+  Read(pnh, "recent_min_planes", c.recent_min_planes);
+  Read(pnh, "recent_min_support", c.recent_min_support);
   Read(pnh, "max_jump_yaw_deg", c.max_jump_yaw_deg);
   Read(pnh, "pose_sigma_xy", c.pose_sigma_xy);
   Read(pnh, "pose_sigma_z", c.pose_sigma_z);

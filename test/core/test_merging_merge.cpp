@@ -12,6 +12,7 @@
 #include "is_graphs/matching/synthetic_sgraph.h"
 #include "is_graphs/merging/merge_state.h"
 #include "is_graphs/merging/merger.h"
+#include "is_graphs/merging/recent_evidence.h"
 #include "is_graphs/sgraph/plane_fit.h"
 #include "matching_test_helpers.h"
 
@@ -229,6 +230,27 @@ TEST(Merge, BimToOdomFollowsTheOdometryFrameOfTheMergedRevision) {
   for (const auto& k : c.s.graph.keyframes)
     EXPECT_LT(((out.bim_T_odom * k.odom_pose).matrix() - (truth * k.pose).matrix()).norm(), 2e-3)
         << "keyframe " << k.id;
+}
+
+TEST(RecentEvidence, WallsSeenNowMustLieOnTheBim) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(2.0, 1.0, 30.0 * kDeg, 0.0);
+  const SyntheticCase c = MakeCase(building, truth, 0.0);
+  MergerConfig config;
+  config.recent_keyframes = 100;  // every keyframe of the synthetic graph
+  MergeSolution solution;
+  const Eigen::Vector3d xi = geometry::ToXYYaw(truth);
+  solution.bim_x_map = xi;
+  const RecentEvidence right = CheckRecentEvidence(building, c.s.graph, solution, config);
+  ASSERT_GE(right.planes, config.recent_min_planes) << right.message;
+  EXPECT_EQ(right.supported, right.planes) << right.message;
+  EXPECT_FALSE(right.contradicts);
+  // The same walls put 1.7 m and 20 degrees off (a robot carried elsewhere keeps its old merge).
+  solution.bim_x_map = xi + Eigen::Vector3d(1.7, -0.4, 20.0 * kDeg);
+  const RecentEvidence wrong = CheckRecentEvidence(building, c.s.graph, solution, config);
+  EXPECT_EQ(wrong.planes, right.planes);
+  EXPECT_LT(wrong.supported, config.recent_min_support * wrong.planes) << wrong.message;
+  EXPECT_TRUE(wrong.contradicts) << wrong.message;
 }
 
 TEST(Merge, MatchesForAnotherAGraphAreIgnored) {

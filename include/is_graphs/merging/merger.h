@@ -9,6 +9,7 @@
 #include "is_graphs/merging/consistency_check.h"
 #include "is_graphs/merging/is_graph_problem.h"
 #include "is_graphs/merging/merger_config.h"
+#include "is_graphs/merging/recent_evidence.h"
 #include "is_graphs/sgraph/sgraph.h"
 
 namespace is_graphs {
@@ -36,6 +37,7 @@ struct MergeOutput {
   Eigen::Matrix3d covariance{Eigen::Matrix3d::Identity()};  // of (x, y, yaw)
   MergeSolution solution;
   ConsistencyReport consistency;
+  RecentEvidence evidence;
   std::string message;
 };
 

@@ -40,6 +40,13 @@ struct MergerConfig {
   int min_surface_inliers{3};
   int min_room_inliers{1};
   double max_chi2_per_dof{9.0};  // mean whitened squared residual of the inliers
+  // What the robot saw lately must lie on the BIM (CheckRecentEvidence): of the wall planes at
+  // least recent_min_length long observed in the newest recent_keyframes keyframes, at least
+  // recent_min_support (a share) on an A-Graph wall-surface once recent_min_planes are seen.
+  int recent_keyframes{6};
+  double recent_min_length{1.0};  // m
+  int recent_min_planes{4};
+  double recent_min_support{0.34};
   // A new UNIQUE match implying a B_x_M this far from the merged one contradicts it.
   double max_jump_translation{0.5};  // m
   double max_jump_yaw_deg{5.0};

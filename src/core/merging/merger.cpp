@@ -2,6 +2,7 @@
 
 #include "is_graphs/agraph/agraph_validation.h"
 #include "is_graphs/geometry/se3.h"
+#include "is_graphs/merging/recent_evidence.h"
 
 namespace is_graphs {
 namespace merging {
@@ -118,6 +119,12 @@ MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) 
   const double z = HeightOfMap(s_graph, match_z_);
   out.solution = SolveMerge(a_graph_, s_graph, pairs_, xi_, prior_, z, config_);
   out.consistency = CheckConsistency(out.solution, config_);
+  out.evidence = CheckRecentEvidence(a_graph_, s_graph, out.solution, config_);
+  if (out.consistency.consistent && out.evidence.contradicts) {
+    out.consistency.consistent = false;
+    out.consistency.message = "what the robot sees now contradicts the BIM (kidnapped?): " +
+                              out.evidence.message;
+  }
   if (!out.consistency.consistent) {
     const bool was_merged = merged_;
     Reset();

@@ -25,7 +25,8 @@ std::string MergerConfig::Validate() const {
       {"pose_sigma_xy", pose_sigma_xy},
       {"pose_sigma_z", pose_sigma_z},
       {"pose_sigma_roll_pitch_deg", pose_sigma_roll_pitch_deg},
-      {"pose_sigma_yaw_deg", pose_sigma_yaw_deg}};
+      {"pose_sigma_yaw_deg", pose_sigma_yaw_deg},
+      {"recent_min_length", recent_min_length}};
   for (const auto& [name, value] : positive) {
     if (!std::isfinite(value) || value <= 0.0) {
       std::ostringstream out;
@@ -37,6 +38,10 @@ std::string MergerConfig::Validate() const {
       min_inlier_fraction > 1.0) {
     return "min_inlier_fraction must be in [0, 1], got " + std::to_string(min_inlier_fraction);
   }
+  if (!std::isfinite(recent_min_support) || recent_min_support < 0.0 || recent_min_support > 1.0)
+    return "recent_min_support must be in [0, 1], got " + std::to_string(recent_min_support);
+  if (recent_keyframes < 0) return "recent_keyframes must be >= 0 (0: off)";
+  if (recent_min_planes < 1) return "recent_min_planes must be >= 1";
   if (min_surface_inliers < 0)
     return "min_surface_inliers must be >= 0, got " + std::to_string(min_surface_inliers);
   if (min_room_inliers < 0)
