@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdio>
+#include <set>
 #include <mutex>
 
 #include "../../src/ros/pose_conversions.h"
@@ -72,10 +73,16 @@ TEST_F(SGraphNodeTest, PublishesAGraphOnTheBuildingsWalls) {
   ASSERT_GE(graph.keyframes.size(), 5u);
   ASSERT_GE(graph.planes.size(), 4u);
   EXPECT_FALSE(graph.observations.empty());
+  // Plane ids are stable but not dense (a duplicate plane merged away leaves its id unused):
+  // every observation and room member must name a published plane.
+  std::set<int> plane_ids;
+  for (const auto& p : graph.planes) EXPECT_TRUE(plane_ids.insert(p.id).second) << "plane " << p.id;
   for (const auto& o : graph.observations) {
     EXPECT_LT(o.keyframe, static_cast<int>(graph.keyframes.size()));
-    EXPECT_LT(o.plane, static_cast<int>(graph.planes.size()));
+    EXPECT_EQ(plane_ids.count(o.plane), 1u) << "observation of an unpublished plane " << o.plane;
   }
+  for (const auto& r : graph.rooms)
+    for (int p : r.planes) EXPECT_EQ(plane_ids.count(p), 1u) << "room " << r.id << " plane " << p;
   ASSERT_GT(truth_.size(), 100u);
   const auto trajectory = sgraph::EvaluateTrajectory(graph, truth_);
   EXPECT_LT(trajectory.sgraph_rmse, 0.1);
