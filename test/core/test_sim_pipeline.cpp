@@ -7,26 +7,16 @@
 
 #include "is_graphs/sim/scenario_yaml.h"
 #include "is_graphs/sim/simulation.h"
+#include "sim_office_helpers.h"
 
 namespace is_graphs {
 namespace sim {
 namespace {
 
-const std::string kRoot = IS_GRAPHS_SOURCE_DIR;
+const std::string& kRoot = testing::kSourceRoot;
 
-bool HaveConverter() {
-  return std::ifstream(kRoot + "/bim/office.ifc").good() &&
-         std::ifstream(kRoot + "/.venv/bin/python3").good();
-}
-
-std::unique_ptr<Simulation> Prepare(const std::string& yaml) {
-  const Result<ScenarioConfig> config = ParseScenarioYaml(yaml, "test.yaml", kRoot);
-  EXPECT_TRUE(config.ok()) << config.error();
-  if (!config.ok()) return nullptr;
-  auto sim = PrepareSimulation(config.value(), std::string(IS_GRAPHS_TEST_TMP_DIR) + "/bim_cache");
-  EXPECT_TRUE(sim.ok()) << sim.error();
-  return sim.ok() ? std::move(sim).value() : nullptr;
-}
+using testing::HaveConverter;
+using testing::Prepare;
 
 const char* kScenario = R"(
 building: bim/office.ifc

@@ -11,8 +11,8 @@
 
 #include <array>
 #include <cstdio>
-#include <set>
 #include <mutex>
+#include <set>
 
 #include "../../src/ros/pose_conversions.h"
 #include "../../src/ros/sgraph_conversions.h"

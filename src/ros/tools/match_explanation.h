@@ -2,6 +2,7 @@
 // (from the bag's ground truth): for each S-room, the A-room it lies in, how its planes fit that
 // room, and the matcher's local candidates. The question it answers: why did matching not
 // become UNIQUE (a false S-room, a room whose planes do not fit, a missing candidate).
+// With IS_GRAPHS_EXPLAIN_PLANES set, each S-room's planes (in B) and its A-room's surfaces too.
 #pragma once
 
 #include <cstdio>
