@@ -77,6 +77,8 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "max_planes", f.max_planes);
   Read(pnh, "min_segment_length", f.min_segment_length);
   Read(pnh, "min_segment_height", f.min_segment_height);
+  Read(pnh, "wall_min_rise", f.wall_min_rise);
+  Read(pnh, "sensor_max_elevation_deg", f.sensor_max_elevation_deg);
   Read(pnh, "segment_gap", f.segment_gap);
   Read(pnh, "point_sigma", f.point_sigma);
   Read(pnh, "max_effective_points", f.max_effective_points);

@@ -97,6 +97,26 @@ TEST_P(ExtractionTest, FindsEveryWallAndTheFloorFacingTheSensor) {
 INSTANTIATE_TEST_SUITE_P(Orientations, ExtractionTest,
                          ::testing::Values(0.0, 30.0 * M_PI / 180.0, 1.1));
 
+// The sensor 0.7 m above the floor (z = -0.7): a counter front 0.3 m above the sensor at 3 m is
+// furniture; a wall behind it, a low wall 1 m away (where the +15 deg beam reaches only 0.27 m
+// above the sensor) and the same counter with the rise check off are walls.
+TEST(PlaneExtraction, FurnitureBelowTheWallRiseIsDropped) {
+  std::mt19937 rng(4);
+  PointList points;
+  testing::AddWall(points, Vector2d(3, -1.5), Vector2d(3, 1.5), -0.7, 0.3, 0.04, 0.005, rng);
+  testing::AddWall(points, Vector2d(5, -3), Vector2d(5, 3), -0.7, 1.5, 0.04, 0.005, rng);
+  testing::AddWall(points, Vector2d(-2, -1), Vector2d(2, -1), -0.7, 0.25, 0.04, 0.005, rng);
+  FrontendConfig config;
+  config.extract_floor = false;
+  const auto segments = ExtractPlanes(points, Vector3d::UnitZ(), Vector3d::Zero(), config);
+  EXPECT_LT(Find(segments, geometry::Plane(Vector3d(-1, 0, 0), -3.0)), 0) << "the counter";
+  EXPECT_GE(Find(segments, geometry::Plane(Vector3d(-1, 0, 0), -5.0)), 0) << "the wall";
+  EXPECT_GE(Find(segments, geometry::Plane(Vector3d(0, 1, 0), -1.0)), 0) << "the near wall";
+  config.wall_min_rise = 0.0;
+  const auto all = ExtractPlanes(points, Vector3d::UnitZ(), Vector3d::Zero(), config);
+  EXPECT_GE(Find(all, geometry::Plane(Vector3d(-1, 0, 0), -3.0)), 0) << "the counter, unchecked";
+}
+
 TEST(PlaneExtraction, EmptyAndTinyCloudsGiveNothing) {
   FrontendConfig config;
   EXPECT_TRUE(ExtractPlanes({}, Vector3d::UnitZ(), Vector3d::Zero(), config).empty());

@@ -32,6 +32,11 @@ struct FrontendConfig {
   int max_planes{24};
   double min_segment_length{0.6};  // horizontal extent of a wall segment
   double min_segment_height{0.3};  // vertical extent of a wall segment
+  // A wall rises above the sensor: a segment whose top stays below the sensor + wall_min_rise
+  // is furniture (a counter, a sofa, a pallet), unless the wall is so near that the highest
+  // beam (sensor_max_elevation_deg) cannot see that high on it.
+  double wall_min_rise{0.45};
+  double sensor_max_elevation_deg{15.0};
   double segment_gap{0.5};         // coplanar points further apart are different segments
   double point_sigma{0.03};        // range noise used for the plane covariance
   int max_effective_points{150};   // cap on independent points (correlated errors)

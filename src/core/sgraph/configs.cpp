@@ -61,6 +61,8 @@ std::string FrontendConfig::Validate() const {
   c.Range("max_planes", max_planes, 1, 1000);
   c.Positive("min_segment_length", min_segment_length);
   c.NonNegative("min_segment_height", min_segment_height);
+  c.NonNegative("wall_min_rise", wall_min_rise);
+  c.Range("sensor_max_elevation_deg", sensor_max_elevation_deg, 0.0, 89.0);
   c.Positive("segment_gap", segment_gap);
   c.Positive("point_sigma", point_sigma);
   c.Range("max_effective_points", max_effective_points, 3, 1e7);

@@ -42,6 +42,16 @@ std::vector<int> RansacPlane(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& clo
   return std::vector<int>(inliers.indices.begin(), inliers.indices.end());
 }
 
+/// How far above the sensor a wall segment must reach: wall_min_rise, or less where the highest
+/// beam cannot see that high at the wall's distance (with a margin for the beam spacing).
+double RequiredRise(const geometry::Plane& plane, const Eigen::Vector3d& sensor_origin,
+                    const FrontendConfig& config) {
+  constexpr double kBeamReachShare = 0.8;
+  const double distance = std::abs(plane.SignedDistance(sensor_origin));
+  const double reach = distance * std::tan(config.sensor_max_elevation_deg * kDegToRad);
+  return std::min(config.wall_min_rise, kBeamReachShare * reach);
+}
+
 /// Refits a segment, orients it to the sensor and fills the extent; false to drop it.
 bool MakeSegment(const PointList& points, const std::vector<int>& indices, bool horizontal,
                  const Eigen::Vector3d& up, const Eigen::Vector3d& sensor_origin,
@@ -75,6 +85,8 @@ bool MakeSegment(const PointList& points, const std::vector<int>& indices, bool 
   }
   if (!horizontal &&
       (s_max - s_min < config.min_segment_length || h_max - h_min < config.min_segment_height))
+    return false;
+  if (!horizontal && h_max - up.dot(sensor_origin) < RequiredRise(plane, sensor_origin, config))
     return false;
   const Eigen::Vector3d c = fit->centroid;
   out.plane = plane;
