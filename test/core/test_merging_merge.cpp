@@ -10,6 +10,7 @@
 #include "is_graphs/agraph/agraph_io.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/synthetic_sgraph.h"
+#include "is_graphs/merging/consistency_check.h"
 #include "is_graphs/merging/merge_state.h"
 #include "is_graphs/merging/merger.h"
 #include "is_graphs/merging/recent_evidence.h"
@@ -285,6 +286,39 @@ TEST(MergeState, TracksTimeAndDistanceToLocalize) {
   state.Reset("new building");
   EXPECT_EQ(state.state(), LocalizationState::kNotLocalized);
   EXPECT_DOUBLE_EQ(state.distance_walked(), 0.0);
+}
+
+// Four surface pairs on the BIM and the one room pair off by 1 m (an S-room redrawn from a
+// worse view): a new merge is refused, a merge already made keeps going without that room.
+TEST(ConsistencyCheck, ARoomTurningOutlierDropsTheRoomNotTheMerge) {
+  MergerConfig config;
+  MergeSolution solution;
+  solution.usable = true;
+  for (int i = 0; i < 4; ++i) {
+    PairResidual s;
+    s.s_id = i;
+    s.angle_deg = 0.2;
+    s.offset = 0.01;
+    s.chi2 = 1.0;
+    s.dof = 2;
+    solution.surfaces.push_back(s);
+  }
+  PairResidual room;
+  room.s_id = 7;
+  room.distance = 1.0;
+  room.chi2 = 50.0;
+  room.dof = 2;
+  solution.rooms.push_back(room);
+  ASSERT_GT(room.distance, config.gate_room);
+  const ConsistencyReport start = CheckConsistency(solution, config, true);
+  EXPECT_FALSE(start.consistent);
+  EXPECT_EQ(start.message.rfind("too few room inliers", 0), 0u) << start.message;
+  const ConsistencyReport later = CheckConsistency(solution, config, false);
+  EXPECT_TRUE(later.consistent) << later.message;
+  EXPECT_EQ(later.outlier_rooms, std::vector<int>{7});
+  // Surfaces still decide: with two of them off the BIM too the merge goes.
+  solution.surfaces[0].offset = solution.surfaces[1].offset = 0.8;
+  EXPECT_FALSE(CheckConsistency(solution, config, false).consistent);
 }
 
 TEST(MergerConfig, ValidateNamesTheField) {

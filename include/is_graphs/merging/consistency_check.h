@@ -26,8 +26,12 @@ struct ConsistencyReport {
 };
 
 /// Gates each pair (config.gate_*), then requires config.min_surface_inliers,
-/// config.min_room_inliers, config.min_inlier_fraction and config.max_chi2_per_dof.
-ConsistencyReport CheckConsistency(const MergeSolution& solution, const MergerConfig& config);
+/// config.min_inlier_fraction, config.max_chi2_per_dof and, when `starting` a merge,
+/// config.min_room_inliers. A merge already made holds on its surfaces: a room pair that turns
+/// outlier later (the S-room redrawn from a worse view, a room changed on site) is dropped, not
+/// the merge.
+ConsistencyReport CheckConsistency(const MergeSolution& solution, const MergerConfig& config,
+                                   bool starting = true);
 
 /// How far apart two B_x_M = (x, y, yaw) put a point p of M: translation [m] and yaw [deg].
 struct TransformJump {

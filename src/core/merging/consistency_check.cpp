@@ -9,7 +9,8 @@
 namespace is_graphs {
 namespace merging {
 
-ConsistencyReport CheckConsistency(const MergeSolution& solution, const MergerConfig& config) {
+ConsistencyReport CheckConsistency(const MergeSolution& solution, const MergerConfig& config,
+                                   bool starting) {
   ConsistencyReport report;
   double chi2 = 0.0;
   int dof = 0;
@@ -45,7 +46,7 @@ ConsistencyReport CheckConsistency(const MergeSolution& solution, const MergerCo
   std::string why;
   if (!solution.usable) why = "the solve failed (" + solution.message + ")";
   else if (report.surface_inliers < config.min_surface_inliers) why = "too few surface inliers";
-  else if (report.room_inliers < config.min_room_inliers) why = "too few room inliers";
+  else if (starting && report.room_inliers < config.min_room_inliers) why = "too few room inliers";
   else if (report.inlier_fraction < config.min_inlier_fraction) why = "too many outlier pairs";
   else if (report.chi2_per_dof > config.max_chi2_per_dof) why = "inlier residuals too large";
   report.consistent = why.empty();

@@ -118,7 +118,7 @@ MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) 
   MergeOutput out;
   const double z = HeightOfMap(s_graph, match_z_);
   out.solution = SolveMerge(a_graph_, s_graph, pairs_, xi_, prior_, z, config_);
-  out.consistency = CheckConsistency(out.solution, config_);
+  out.consistency = CheckConsistency(out.solution, config_, starting);
   out.evidence = CheckRecentEvidence(a_graph_, s_graph, out.solution, config_);
   if (out.consistency.consistent && out.evidence.contradicts) {
     out.consistency.consistent = false;

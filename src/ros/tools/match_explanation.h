@@ -2,7 +2,8 @@
 // (from the bag's ground truth): for each S-room, the A-room it lies in, how its planes fit that
 // room, and the matcher's local candidates. The question it answers: why did matching not
 // become UNIQUE (a false S-room, a room whose planes do not fit, a missing candidate).
-// With IS_GRAPHS_EXPLAIN_PLANES set, each S-room's planes (in B) and its A-room's surfaces too.
+// With IS_GRAPHS_EXPLAIN_PLANES set, each S-room's planes (in B) and its A-room's surfaces too,
+// and at the end every mapped wall plane in B (with its extent).
 #pragma once
 
 #include <cstdio>
@@ -75,6 +76,14 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
           "    candidate %-14s quality %.2f %s yaw %+6.1f deg, centre %.2f m from the truth\n",
           name(cand.a_room).c_str(), cand.quality, cand.full_rank ? "full" : "axis", dyaw, dt);
     }
+  }
+  if (!std::getenv("IS_GRAPHS_EXPLAIN_PLANES")) return;
+  for (const auto& p : graph.planes) {
+    if (std::abs(p.plane.normal.z()) > 0.5) continue;  // the floor
+    const Eigen::Vector2d n = true_pose.Rotate(p.plane.normal.head<2>().normalized());
+    const Eigen::Vector2d a = true_pose.Apply(p.start), b = true_pose.Apply(p.end);
+    std::printf("plane %3d: n (%5.2f, %5.2f) from (%6.2f, %6.2f) to (%6.2f, %6.2f), z %.2f..%.2f\n",
+                p.id, n.x(), n.y(), a.x(), a.y(), b.x(), b.y(), p.z_min, p.z_max);
   }
 }
 
