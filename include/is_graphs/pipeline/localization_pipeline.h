@@ -64,11 +64,15 @@ class LocalizationPipeline {
   bool localized() const { return merger_.merged(); }
   const StageTimes& times() const { return times_; }
   const std::vector<PipelineEvent>& events() const { return events_; }
+  /// Every UNIQUE match (events() keeps only changes of the match status), for the evaluation.
+  const std::vector<PipelineEvent>& unique_matches() const { return unique_matches_; }
   sgraph::SGraph Snapshot() const { return builder_.Snapshot(); }
   const sgraph::SGraphBuilder& builder() const { return builder_; }
   const merging::Merger& merger() const { return merger_; }
   /// B <- odom of the current merge (identity before it).
   const Eigen::Isometry3d& bim_T_odom() const { return bim_T_odom_; }
+  /// B_x_M of the current merge (identity before it).
+  const Eigen::Isometry3d& bim_T_map() const { return bim_T_map_; }
 
  private:
   void Record(double stamp, unsigned revision, const merging::MergeOutput& out);
@@ -78,8 +82,10 @@ class LocalizationPipeline {
   matching::GraphMatcher matcher_;
   merging::Merger merger_;
   Eigen::Isometry3d bim_T_odom_{Eigen::Isometry3d::Identity()};
+  Eigen::Isometry3d bim_T_map_{Eigen::Isometry3d::Identity()};
   StageTimes times_;
   std::vector<PipelineEvent> events_;
+  std::vector<PipelineEvent> unique_matches_;
 };
 
 }  // namespace pipeline

@@ -32,7 +32,7 @@ std::string LocalizationPipeline::SetAGraph(const agraph::AGraph& graph) {
   const std::string error = merger_.SetAGraph(graph);
   if (!error.empty()) return error;
   matcher_.SetAGraph(graph);
-  bim_T_odom_ = Eigen::Isometry3d::Identity();
+  bim_T_odom_ = bim_T_map_ = Eigen::Isometry3d::Identity();
   return "";
 }
 
@@ -76,6 +76,7 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
               std::to_string(match.score);
   if (events_.empty() || events_.back().kind != "match" || events_.back().status != match.status)
     events_.push_back(e);
+  if (match.status == matching::MatchStatus::kUnique) unique_matches_.push_back(e);
 
   if (match.status != matching::MatchStatus::kUnique && !merger_.merged()) return result;
   t0 = Clock::now();
@@ -89,7 +90,7 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
 
 void LocalizationPipeline::Record(double stamp, unsigned revision,
                                   const merging::MergeOutput& out) {
-  if (out.merged) bim_T_odom_ = out.bim_T_odom;
+  if (out.merged) bim_T_odom_ = out.bim_T_odom, bim_T_map_ = out.bim_T_map;
   if (out.event == merging::MergeEvent::kNone || out.event == merging::MergeEvent::kUpdated) return;
   PipelineEvent e;
   e.stamp = stamp;
