@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo test bench-conversion buildings bags bags-short bench-bags bench-sgraph bench-matching clean format
+.PHONY: all setup build demo test bench-conversion buildings bags bags-short bench-bags bench-sgraph bench-matching evaluate clean format
 
 all: build
 
@@ -47,6 +47,12 @@ bench-sgraph: build
 # Matching time for S-Graphs of 3, 10, 20 rooms against A-Graphs of 10, 60, 200 rooms.
 bench-matching: build
 	@.ws/devel/lib/is_graphs/bench_matching
+
+# Localization (replay_pipeline: the core the nodes run) on every full-length scenario bag
+# present, against ground truth and the odometry / S-Graph baselines: .ws/evaluate/results.md,
+# results.json and per-dataset plots. Missing bags are listed (make bags makes them).
+evaluate: build
+	@.venv/bin/python3 scripts/evaluate.py
 
 format:
 	@clang-format -i $$(git ls-files '*.h' '*.cpp')

@@ -16,6 +16,8 @@ import sys
 
 import numpy as np
 
+from evaluation_common import ape, draw_plan
+
 
 def fail(message):
     print(f"evaluate_run: error: {message}", file=sys.stderr)
@@ -43,14 +45,7 @@ def read_trajectories(run_bag):
     return gt, est
 
 
-def yaw_of(quaternions_wxyz):
-    w, x, y, z = quaternions_wxyz.T
-    return np.arctan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
-
-
 def evaluate(gt, est):
-    from evo.core import metrics, sync
-
     result = {"localized": est is not None and est.num_poses > 0}
     t0 = gt.timestamps[0]
     steps = np.linalg.norm(np.diff(gt.positions_xyz[:, :2], axis=0), axis=1)
@@ -62,19 +57,9 @@ def evaluate(gt, est):
     t_loc = est.timestamps[0]
     result["time_to_localize_s"] = float(t_loc - t0)
     result["distance_to_localize_m"] = float(np.interp(t_loc, gt.timestamps, walked))
-    ref, est_sync = sync.associate_trajectories(gt, est, max_diff=0.03)
-    ape = metrics.APE(metrics.PoseRelation.translation_part)
-    ape.process_data((ref, est_sync))
-    stats = ape.get_all_statistics()
-    err_xy = np.linalg.norm(ref.positions_xyz[:, :2] - est_sync.positions_xyz[:, :2], axis=1)
-    dyaw = yaw_of(est_sync.orientations_quat_wxyz) - yaw_of(ref.orientations_quat_wxyz)
-    dyaw = np.degrees(np.abs(np.arctan2(np.sin(dyaw), np.cos(dyaw))))
-    result.update({
-        "poses_evaluated": int(ref.num_poses),
-        "ape_rmse_m": float(stats["rmse"]), "ape_max_m": float(stats["max"]),
-        "ape_xy_rmse_m": float(np.sqrt(np.mean(err_xy ** 2))), "ape_xy_max_m": float(err_xy.max()),
-        "yaw_rmse_deg": float(np.sqrt(np.mean(dyaw ** 2))), "yaw_max_deg": float(dyaw.max()),
-    })
+    numbers = ape(gt, est)
+    _, err_xy, _, ref, est_sync = numbers.pop("_series")
+    result.update(numbers)
     result["_plot"] = (ref, est_sync, err_xy)
     return result
 
@@ -84,19 +69,8 @@ def plot(result, gt, agraph_path, storey, out_png):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    with open(agraph_path) as f:
-        graph = json.load(f)
-    storeys = {str(s["id"]) for s in graph["storeys"]}
-    if storey not in ("", None):
-        storeys = {str(s["id"]) for s in graph["storeys"] if storey in (s["name"], str(s["id"]))}
     fig, ax = plt.subplots(figsize=(10, 8), dpi=110)
-    for s in graph["wall_surfaces"]:
-        if str(s["storey"]) in storeys:
-            ax.plot([s["start"][0], s["end"][0]], [s["start"][1], s["end"][1]], color="0.45", lw=1.2)
-    for r in graph["rooms"]:
-        if str(r["storey"]) in storeys:
-            ax.text(r["center"][0], r["center"][1], r["name"], fontsize=7, color="0.35",
-                    ha="center", va="center")
+    graph = draw_plan(ax, agraph_path, storey)
     ax.plot(gt.positions_xyz[:, 0], gt.positions_xyz[:, 1], color="black", lw=1.0,
             label="ground truth")
     if result["localized"]:
@@ -113,9 +87,6 @@ def plot(result, gt, agraph_path, storey, out_png):
     else:
         title = "not localized"
     ax.set_title(f"{graph.get('building', '')}: {title}", fontsize=10)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m] (bim)")
-    ax.set_ylabel("y [m] (bim)")
     ax.legend(loc="best", fontsize=8)
     fig.tight_layout()
     fig.savefig(out_png)

@@ -2,10 +2,16 @@
 // core, synchronously and without ROS transport: deterministic and as fast as the machine goes.
 // Prints the match and merge events, the time and distance to localize, the per-stage latency,
 // the real-time factor and the peak RSS; writes the BIM-frame poses and the ground truth as TUM
-// files and a JSON summary (make bench, scripts/evaluate.py and debugging read them).
+// files and a JSON summary (scripts/evaluate.py, `make evaluate`, and debugging read them), with
+// the evaluation's measures: every UNIQUE match against the true B_x_M, the map cloud against
+// the BIM (replay_evaluation.h).
 //
 //   replay_pipeline BAG --building FILE.ifc|.agraph.json [--storey S] [--duration S]
 //                   [--out-prefix PREFIX]   (writes PREFIX.pose_bim.tum, PREFIX.truth.tum,
+//                                            PREFIX.odom.tum: odom <- base_link,
+//                                            PREFIX.sgraph.tum: the final keyframes, map <- base,
+//                                            PREFIX.sgraph_online.tum: map <- odom <- base at
+//                                            each odometry reading, as sgraph_node's tf gives,
 //                                            PREFIX.json)
 //                   [--explain]  (the S-rooms against the BIM under the true motion)
 #include <geometry_msgs/PoseStamped.h>
@@ -26,23 +32,18 @@
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/pipeline/localization_pipeline.h"
 #include "match_explanation.h"
+#include "replay_evaluation.h"
 
 namespace {
 
 using namespace is_graphs;
 using bag_replay::Percentile;
+using bag_replay::WriteTum;
 
 int Usage() {
   std::cerr << "usage: replay_pipeline BAG --building FILE [--storey S] [--duration S] "
                "[--out-prefix PREFIX] [--explain]\n";
   return 2;
-}
-
-void WriteTum(std::FILE* f, double t, const Eigen::Isometry3d& pose) {
-  const Eigen::Quaterniond q(pose.linear());
-  const Eigen::Vector3d p = pose.translation();
-  std::fprintf(f, "%.6f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", t, p.x(), p.y(), p.z(), q.x(), q.y(),
-               q.z(), q.w());
 }
 
 nlohmann::json Stats(const std::vector<double>& v) {
@@ -114,7 +115,10 @@ int main(int argc, char** argv) {
       prefix.empty() ? nullptr : std::fopen((prefix + ".pose_bim.tum").c_str(), "w");
   std::FILE* truth_file =
       prefix.empty() ? nullptr : std::fopen((prefix + ".truth.tum").c_str(), "w");
-  if (!prefix.empty() && (!pose_file || !truth_file)) {
+  std::FILE* odom_file = prefix.empty() ? nullptr : std::fopen((prefix + ".odom.tum").c_str(), "w");
+  std::FILE* online_file =
+      prefix.empty() ? nullptr : std::fopen((prefix + ".sgraph_online.tum").c_str(), "w");
+  if (!prefix.empty() && (!pose_file || !truth_file || !odom_file || !online_file)) {
     std::cerr << "replay_pipeline: cannot write " << prefix << ".*\n";
     return 2;
   }
@@ -125,6 +129,8 @@ int main(int argc, char** argv) {
   Eigen::Vector3d last_position = Eigen::Vector3d::Constant(std::nan(""));
   int poses = 0;
   std::vector<sgraph::StampedPose> truths;
+  bag_replay::MatchAudit audit;
+  bool ever_merged = false;
   for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(bag_replay::SensorTopics()))) {
     const double t = m.getTime().toSec();
     if (first < 0.0) first = t;
@@ -136,14 +142,20 @@ int main(int argc, char** argv) {
       if (last_position.allFinite())
         walked += (odom_T_base.translation() - last_position).head<2>().norm();
       last_position = odom_T_base.translation();
+      if (odom_file) WriteTum(odom_file, stamp, odom_T_base);
       const auto pose = localization.AddOdometry(stamp, odom_T_base);
+      if (online_file)
+        WriteTum(online_file, stamp, localization.builder().MapToOdom() * odom_T_base);
       if (!pose) continue;
       if (localized_at < 0.0) localized_at = stamp, walked_at = walked;
       ++poses;
       if (pose_file) WriteTum(pose_file, stamp, *pose);
     } else if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) {
       const auto scan = ros_conversions::FromVelodyneMsg(*cloud);
-      if (scan.ok()) localization.AddScan(scan.value(), base_T_sensor);
+      if (!scan.ok()) continue;
+      localization.AddScan(scan.value(), base_T_sensor);
+      audit.Update(localization, truths, first);
+      ever_merged = ever_merged || localization.localized();
     } else if (auto truth = m.instantiate<geometry_msgs::PoseStamped>()) {
       truths.push_back({truth->header.stamp.toSec(), ros_conversions::FromPose(truth->pose)});
       if (truth_file) WriteTum(truth_file, truths.back().stamp, truths.back().pose);
@@ -152,12 +164,15 @@ int main(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
   if (pose_file) std::fclose(pose_file);
   if (truth_file) std::fclose(truth_file);
+  if (odom_file) std::fclose(odom_file);
+  if (online_file) std::fclose(online_file);
 
   const auto& times = localization.times();
   const sgraph::SGraph graph = localization.Snapshot();
   nlohmann::json out;
   out["bag"] = bag_path;
   out["building"] = building.building;
+  out["first_stamp"] = first;
   out["bag_seconds"] = last - first;
   out["walked_m"] = walked;
   out["localized"] = localized_at >= 0.0;
@@ -192,6 +207,17 @@ int main(int argc, char** argv) {
                 xi.x(), xi.y(), xi.z() * 180.0 / M_PI, e.message.c_str());
   }
   out["events"] = events;
+  out["unique_matches"] = audit.json();
+  out["wrong_matches"] = audit.wrong();
+  out["localized_at_end"] = localization.localized();
+  out["final_bim_x_map"] = bag_replay::XYYawDeg(localization.bim_T_map());
+  out["map_cloud_error"] = bag_replay::MapCloudError(localization, building, ever_merged);
+  std::printf("UNIQUE matches %zu, wrong (> 0.5 m or 5 deg from the truth) %d\n",
+              audit.json().size(), audit.wrong());
+  if (const auto& c = out["map_cloud_error"]; !c.is_null())
+    std::printf("map cloud vs BIM wall-surfaces: RMSE %.3f m, median %.3f m (%d of %d points)\n",
+                c["rmse_m"].get<double>(), c["median_m"].get<double>(), c["used"].get<int>(),
+                c["points"].get<int>());
   std::printf("bag %.1f s, walked %.1f m; %s; keyframes %zu, planes %zu, rooms %zu\n", last - first,
               walked,
               localized_at < 0.0 ? "NOT localized"
@@ -208,6 +234,10 @@ int main(int argc, char** argv) {
   if (explain) bag_replay::ExplainMatch(building, graph, truths, config.matcher);
   if (!prefix.empty()) {
     std::ofstream(prefix + ".json") << out.dump(2) << "\n";
+    if (!bag_replay::WriteKeyframesTum(graph, prefix + ".sgraph.tum")) {
+      std::cerr << "replay_pipeline: cannot write " << prefix << ".sgraph.tum\n";
+      return 2;
+    }
   }
   return 0;
 }
