@@ -19,6 +19,7 @@
 #include "is_graphs/matching/graph_matcher.h"
 #include "param_helpers.h"
 #include "sgraph_conversions.h"
+#include "sgraph_session.h"
 
 namespace is_graphs {
 namespace {
@@ -48,7 +49,8 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "frame_id", p.markers.frame_id);
   ros_params::Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
   if (p.markers.frame_id.empty())
-    throw ros_params::ParamError("parameter '" + pnh.resolveName("frame_id") + "' must not be empty");
+    throw ros_params::ParamError("parameter '" + pnh.resolveName("frame_id") +
+                                 "' must not be empty");
   const std::string error = c.Validate();
   if (!error.empty())  // Validate names the field, which is the parameter's name
     throw ros_params::ParamError("parameter '" + pnh.resolveName(error.substr(0, error.find(' '))) +
@@ -98,7 +100,8 @@ class MatcherNode {
       is_graphs::SGraph::ConstPtr s_msg;
       {
         std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [&] { return stop_ || pending_a_ || (pending_s_ && matcher_.HasAGraph()); });
+        wake_.wait(lock,
+                   [&] { return stop_ || pending_a_ || (pending_s_ && matcher_.HasAGraph()); });
         if (stop_) return;
         a_msg.swap(pending_a_);
         if (matcher_.HasAGraph() || a_msg) s_msg.swap(pending_s_);
@@ -110,24 +113,30 @@ class MatcherNode {
 
   void SetAGraph(const is_graphs::AGraph& msg) {
     a_graph_ = ros_conversions::FromMsg(msg);
-    for (const auto& w : matcher_.SetAGraph(a_graph_)) ROS_WARN("matcher_node: A-Graph: %s", w.c_str());
+    for (const auto& w : matcher_.SetAGraph(a_graph_))
+      ROS_WARN("matcher_node: A-Graph: %s", w.c_str());
     ROS_INFO("matcher_node: A-Graph '%s' with %zu rooms (%zu usable)", msg.building.c_str(),
              a_graph_.rooms.size(), matcher_.ARooms().size());
     if (last_s_) MatchAndPublish(*last_s_);  // a new building: match the last S-Graph again
   }
 
   void MatchAndPublish(const is_graphs::SGraph& msg) {
+    if (last_s_ && ros_sgraph::IsNewSession(*last_s_, msg)) {
+      ROS_WARN("matcher_node: a new S-Graph (revision %u, %zu keyframes): matching from scratch",
+               msg.revision, msg.keyframes.size());
+      matcher_.ForgetHistory();
+    }
     last_s_ = boost::make_shared<is_graphs::SGraph>(msg);
     const sgraph::SGraph s_graph = ros_conversions::FromMsg(msg);
     const matching::GraphMatch match = matcher_.Match(s_graph);
-    for (const auto& w : match.warnings)
-      ROS_WARN_THROTTLE(2.0, "matcher_node: %s", w.c_str());
+    for (const auto& w : match.warnings) ROS_WARN_THROTTLE(2.0, "matcher_node: %s", w.c_str());
     const auto& stats = matcher_.LastStats();
-    ROS_INFO("matcher_node: S-Graph rev %u: %s (%u hypotheses, score %.2f, %zu room pairs), "
-             "%d rooms, %d candidates (%d rooms reused), %d seeds, %.1f ms",
-             msg.revision, matching::ToString(match.status), match.hypotheses, match.score,
-             match.room_pairs.size(), stats.s_rooms, stats.candidates, stats.reused_rooms,
-             stats.seeds, stats.milliseconds);
+    ROS_INFO(
+        "matcher_node: S-Graph rev %u: %s (%u hypotheses, score %.2f, %zu room pairs), "
+        "%d rooms, %d candidates (%d rooms reused), %d seeds, %.1f ms",
+        msg.revision, matching::ToString(match.status), match.hypotheses, match.score,
+        match.room_pairs.size(), stats.s_rooms, stats.candidates, stats.reused_rooms, stats.seeds,
+        stats.milliseconds);
     is_graphs::GraphMatch out = ros_conversions::ToMsg(match);
     out.header.frame_id = params_.markers.frame_id;
     out.header.stamp = msg.header.stamp.isZero() ? ros::Time::now() : msg.header.stamp;

@@ -33,6 +33,7 @@
 #include "param_helpers.h"
 #include "pose_conversions.h"
 #include "sgraph_conversions.h"
+#include "sgraph_session.h"
 #include "tf_lookup.h"
 
 namespace is_graphs {
@@ -170,12 +171,16 @@ class MergerNode {
 
   void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (latest_s_ && msg->revision < latest_s_->revision) {
+    if (latest_s_ && ros_sgraph::IsNewSession(*latest_s_, *msg)) {
       ROS_WARN(
-          "merger_node: S-Graph revision went back from %u to %u (sgraph_node restarted?): "
-          "merge reset, matching again",
-          latest_s_->revision, msg->revision);
+          "merger_node: a new S-Graph (revision %u after %u, %zu keyframes after %zu: "
+          "sgraph_node restarted or lost track): merge reset, matching again",
+          msg->revision, latest_s_->revision, msg->keyframes.size(), latest_s_->keyframes.size());
+      const bool was_localized = localized_ || state_.state() == merging::LocalizationState::kLost;
       ResetLocked("the S-Graph restarted");
+      // A robot that was localized and no longer is, is LOST (not "not yet localized").
+      if (was_localized) state_.SetLost("the S-Graph restarted (track lost): matching again");
+      session_revision_ = msg->revision;
     }
     latest_s_ = msg;
     new_s_ = true;
@@ -202,6 +207,7 @@ class MergerNode {
       ResetLocked("time went back");
       tf_buffer_.clear();
       latest_s_.reset();
+      session_revision_ = 0;
     }
     last_odom_stamp_ = stamp;
     const Eigen::Isometry3d odom_T_base = ros_conversions::FromPose(msg->pose.pose);
@@ -286,7 +292,13 @@ class MergerNode {
         s_msg = latest_s_;
         if (pending_match_) {
           const unsigned seen = latest_s_ ? latest_s_->revision : 0;
-          if (latest_s_ && pending_match_->s_graph_revision <= seen) {
+          if (pending_match_->s_graph_revision < session_revision_) {
+            ROS_WARN(
+                "merger_node: graph_match for S-Graph revision %u, from before the S-Graph "
+                "restarted (revision %u): ignored",
+                pending_match_->s_graph_revision, session_revision_);
+            pending_match_.reset();
+          } else if (latest_s_ && pending_match_->s_graph_revision <= seen) {
             match_msg.swap(pending_match_);
           } else if ((ros::WallTime::now() - pending_match_since_).toSec() > params_.match_wait) {
             ROS_WARN(
@@ -428,6 +440,7 @@ class MergerNode {
   is_graphs::GraphMatch::ConstPtr pending_match_;
   ros::WallTime pending_match_since_;
   bool reset_merger_{false};
+  unsigned session_revision_{0};  // the first S-Graph revision of the current S-Graph
   bool stop_{false};
   bool localized_{false};
   bool status_dirty_{false};

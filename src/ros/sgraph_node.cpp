@@ -55,9 +55,11 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must not be empty");
   }
   if (!(p.map_cloud_period > 0.0))
-    throw ros_params::ParamError("parameter '" + pnh.resolveName("map_cloud_period") + "' must be > 0");
+    throw ros_params::ParamError("parameter '" + pnh.resolveName("map_cloud_period") +
+                                 "' must be > 0");
   if (!(p.map_cloud_voxel > 0.0))
-    throw ros_params::ParamError("parameter '" + pnh.resolveName("map_cloud_voxel") + "' must be > 0");
+    throw ros_params::ParamError("parameter '" + pnh.resolveName("map_cloud_voxel") +
+                                 "' must be > 0");
   if (!(p.tf_rate > 0.0))
     throw ros_params::ParamError("parameter '" + pnh.resolveName("tf_rate") + "' must be > 0");
   auto& f = p.frontend;
@@ -91,6 +93,11 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "association_max_gap", f.association_max_gap);
   Read(pnh, "association_coplanar_tolerance", f.association_coplanar_tolerance);
   Read(pnh, "detect_rooms", f.detect_rooms);
+  Read(pnh, "detect_track_loss", f.detect_track_loss);
+  Read(pnh, "track_loss_min_keyframes", f.track_loss_min_keyframes);
+  Read(pnh, "track_loss_min_walls", f.track_loss_min_walls);
+  Read(pnh, "track_loss_new_share", f.track_loss_new_share);
+  Read(pnh, "track_check_period", f.track_check_period);
   Read(pnh, "room_max_range", f.room_max_range);
   Read(pnh, "room_min_width", f.room_min_width);
   Read(pnh, "room_max_width", f.room_max_width);
@@ -127,7 +134,9 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
 class SGraphNode {
  public:
   SGraphNode(ros::NodeHandle& nh, const SGraphNodeParams& params)
-      : params_(params), builder_(params.frontend, params.backend), tf_listener_(tf_buffer_),
+      : params_(params),
+        builder_(params.frontend, params.backend),
+        tf_listener_(tf_buffer_),
         tf_lookup_(tf_buffer_) {
     graph_pub_ = nh.advertise<is_graphs::SGraph>("s_graph", 2, /*latch=*/true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("s_graph/markers", 2);
@@ -148,7 +157,8 @@ class SGraphNode {
 
  private:
   void OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
-    const auto r = builder_.AddOdometry(msg->header.stamp.toSec(), ros_conversions::FromPose(msg->pose.pose));
+    const auto r =
+        builder_.AddOdometry(msg->header.stamp.toSec(), ros_conversions::FromPose(msg->pose.pose));
     if (!r.warning.empty()) ROS_WARN_THROTTLE(2.0, "sgraph_node: %s", r.warning.c_str());
     if (r.reset) PublishAfterReset();
     last_odom_stamp_ = msg->header.stamp;
@@ -170,9 +180,13 @@ class SGraphNode {
       return;
     }
     const auto r = builder_.AddScan(scan.value(), base_T_sensor.value());
-    if (!r.warning.empty()) ROS_WARN_THROTTLE(2.0, "sgraph_node: velodyne_points: %s", r.warning.c_str());
+    if (r.restarted)
+      ROS_WARN("sgraph_node: %s", r.warning.c_str());  // never throttled away
+    else if (!r.warning.empty())
+      ROS_WARN_THROTTLE(2.0, "sgraph_node: velodyne_points: %s", r.warning.c_str());
     if (r.status == sgraph::SGraphBuilder::ScanStatus::kKeyframe) {
-      ROS_DEBUG("sgraph_node: keyframe %d: %d planes (%d new)", r.keyframe, r.num_segments, r.num_new_planes);
+      ROS_DEBUG("sgraph_node: keyframe %d: %d planes (%d new)", r.keyframe, r.num_segments,
+                r.num_new_planes);
       wake_.notify_one();
     }
   }
@@ -192,7 +206,8 @@ class SGraphNode {
           ROS_WARN("sgraph_node: optimization not usable: %s", summary.message.c_str());
         continue;
       }
-      ROS_DEBUG("sgraph_node: optimized %d keyframes in %.1f ms", summary.num_keyframes, 1e3 * summary.seconds);
+      ROS_DEBUG("sgraph_node: optimized %d keyframes in %.1f ms", summary.num_keyframes,
+                1e3 * summary.seconds);
       Publish();
     }
   }
@@ -211,7 +226,8 @@ class SGraphNode {
       marker_pub_.publish(markers);
     }
     const ros::WallTime now = ros::WallTime::now();
-    if (cloud_pub_.getNumSubscribers() > 0 && (now - last_cloud_).toSec() >= params_.map_cloud_period) {
+    if (cloud_pub_.getNumSubscribers() > 0 &&
+        (now - last_cloud_).toSec() >= params_.map_cloud_period) {
       last_cloud_ = now;
       const auto points = builder_.MapCloud(params_.map_cloud_voxel);
       std::vector<Eigen::Vector3d> out(points.size());

@@ -33,7 +33,8 @@ class BuilderTest : public ::testing::Test {
     const double s = 0.5 * t;
     Eigen::Isometry3d o = Eigen::Isometry3d::Identity();
     o.linear() = Eigen::AngleAxisd(0.03 * s, Vector3d::UnitZ()).toRotationMatrix();
-    o.translation() = Vector3d(1.0 + 1.03 * s * std::cos(0.015 * s), 1.03 * s * std::sin(0.015 * s) + 2.5, 0.5);
+    o.translation() =
+        Vector3d(1.0 + 1.03 * s * std::cos(0.015 * s), 1.03 * s * std::sin(0.015 * s) + 2.5, 0.5);
     (void)truth;
     return o;
   }
@@ -45,7 +46,8 @@ class BuilderTest : public ::testing::Test {
     const Eigen::Isometry3f sensor_T_world = Truth(t).inverse().cast<float>();
     for (const auto& p : world_) {
       const Eigen::Vector3f q = sensor_T_world * p;
-      if (q.norm() > 15.0f || std::abs(q.z()) > 0.4f * q.head<2>().norm() + 0.01f) continue;  // ±22°
+      if (q.norm() > 15.0f || std::abs(q.z()) > 0.4f * q.head<2>().norm() + 0.01f)
+        continue;  // ±22°
       ScanPoint sp;
       sp.x = q.x(), sp.y = q.y(), sp.z = q.z();
       scan.points.push_back(sp);
@@ -75,7 +77,8 @@ TEST_F(BuilderTest, MapsTheRoomAndCorrectsTheDrift) {
   EXPECT_GT(g.revision, 0u);
   // Four walls and the floor; a few extra planes at most (no duplicates of the big walls).
   int walls = 0, floors = 0;
-  for (const auto& p : g.planes) (p.orientation == geometry::Orientation::kHorizontal ? floors : walls)++;
+  for (const auto& p : g.planes)
+    (p.orientation == geometry::Orientation::kHorizontal ? floors : walls)++;
   EXPECT_EQ(floors, 1);
   EXPECT_GE(walls, 4);
   EXPECT_LE(walls, 6);
@@ -137,6 +140,93 @@ TEST_F(BuilderTest, BadInputIsSkippedWithAWarning) {
   EXPECT_EQ(builder.num_keyframes(), 0);
   EXPECT_TRUE(builder.Snapshot().planes.empty());
   EXPECT_FALSE(builder.Optimize().usable);
+}
+
+// Kidnapped: after walking the room the robot is carried (odometry holds) into a room turned
+// 35 degrees: within the track check period the S-Graph restarts from that scan, holding the
+// new room only; nothing of the old map is tied to it. Walking the room alone never restarts.
+TEST_F(BuilderTest, ACarriedRobotRestartsTheGraphInsteadOfCorruptingIt) {
+  for (bool detect : {true, false}) {
+    SCOPED_TRACE(detect ? "track loss detected" : "detect_track_loss off");
+    FrontendConfig config;
+    config.detect_track_loss = detect;
+    SGraphBuilder builder(config, BackendConfig{});
+    int restarts = 0;
+    for (int i = 0; i <= 12 * 50; ++i) {
+      const double t = i / 50.0;
+      builder.AddOdometry(kStart + t, Odom(t));
+      if (i % 5 || i == 0) continue;
+      const auto r = builder.AddScan(MakeScan(t - 0.02), Eigen::Isometry3d::Identity());
+      restarts += r.restarted;
+      if (r.status == SGraphBuilder::ScanStatus::kKeyframe) builder.Optimize();
+    }
+    EXPECT_EQ(restarts, 0);
+    const int before = builder.num_keyframes();
+    ASSERT_GE(before, config.track_loss_min_keyframes);
+    // The other room: an L of six walls, 5 x 3.6 m, around where the robot now stands
+    // (x = 7, y = 2.5), turned.
+    std::mt19937 rng(6);
+    const Eigen::Rotation2Dd turn(35.0 * M_PI / 180.0);
+    std::vector<Vector2d> corners;
+    for (const Vector2d& c : {Vector2d(-2.5, -1.8), Vector2d(2.5, -1.8), Vector2d(2.5, 0.4),
+                              Vector2d(0.8, 0.4), Vector2d(0.8, 1.8), Vector2d(-2.5, 1.8)})
+      corners.push_back(Vector2d(7.0, 2.5) + turn * c);
+    world_ = testing::PolygonRoom(corners, 0.05, 0.01, rng);
+    double restarted_at = -1.0;
+    for (int i = 1; i <= 3 * 50; ++i) {  // standing there for 3 s
+      const double t = 12.0 + i / 50.0;
+      builder.AddOdometry(kStart + t, Odom(12.0));
+      if (i % 5) continue;
+      Scan scan = MakeScan(12.0);
+      scan.stamp = kStart + t - 0.02;
+      const auto r = builder.AddScan(scan, Eigen::Isometry3d::Identity());
+      if (!r.restarted) continue;
+      EXPECT_LT(restarted_at, 0.0) << "restarted twice";
+      restarted_at = t - 12.0;
+      EXPECT_EQ(r.status, SGraphBuilder::ScanStatus::kKeyframe);
+      EXPECT_NE(r.warning.find("track lost"), std::string::npos) << r.warning;
+      EXPECT_GE(r.num_walls, config.track_loss_min_walls);
+    }
+    if (!detect) {
+      EXPECT_LT(restarted_at, 0.0);
+      EXPECT_EQ(builder.num_keyframes(), before);
+      continue;
+    }
+    ASSERT_GE(restarted_at, 0.0) << "the carry was not detected";
+    EXPECT_LE(restarted_at, config.track_check_period + 0.15);
+    EXPECT_EQ(builder.num_keyframes(), 1);
+    builder.Optimize();
+    const SGraph g = builder.Snapshot();
+    ASSERT_EQ(g.keyframes.size(), 1u);
+    EXPECT_TRUE(g.rooms.empty() || g.rooms.size() == 1u);
+    // The graph restarts in the odometry frame: the turned room's walls (normals at 35 and 125
+    // degrees in the world) appear turned further by the odometry's yaw error at 12 s.
+    const Eigen::Matrix3d odom_rotation = Odom(12.0).linear();
+    const double expected =
+        35.0 + std::atan2(odom_rotation(1, 0), odom_rotation(0, 0)) * 180.0 / M_PI;
+    int walls = 0;
+    for (const auto& p : g.planes) {
+      if (p.orientation == geometry::Orientation::kHorizontal) continue;
+      ++walls;
+      // Every wall mapped now is one of the turned room's, none of the first room's.
+      const double a = std::atan2(p.plane.normal.y(), p.plane.normal.x()) * 180.0 / M_PI;
+      const double off = std::fmod(std::abs(a - expected) + 360.0, 90.0);
+      EXPECT_LT(std::min(off, 90.0 - off), 3.0) << "plane " << p.id << " at " << a << " deg";
+    }
+    EXPECT_GE(walls, config.track_loss_min_walls);
+  }
+}
+
+TEST(FrontendConfigTrackLoss, BadValuesAreNamed) {
+  FrontendConfig c;
+  c.track_loss_new_share = 0.3;
+  EXPECT_NE(c.Validate().find("track_loss_new_share"), std::string::npos) << c.Validate();
+  c = FrontendConfig();
+  c.track_check_period = -1.0;
+  EXPECT_NE(c.Validate().find("track_check_period"), std::string::npos) << c.Validate();
+  c = FrontendConfig();
+  c.track_loss_min_walls = 0;
+  EXPECT_NE(c.Validate().find("track_loss_min_walls"), std::string::npos) << c.Validate();
 }
 
 }  // namespace

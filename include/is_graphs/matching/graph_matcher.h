@@ -18,11 +18,11 @@ namespace matching {
 
 /// What the last Match did (for logs and the benchmark).
 struct MatchStats {
-  int s_rooms{0};          // usable S-rooms
-  int candidates{0};       // local room-pair candidates
-  int reused_rooms{0};     // S-rooms whose candidates came from the previous revision
-  int seeds{0};            // global candidates grown
-  int hypotheses{0};       // distinct global candidates scored
+  int s_rooms{0};       // usable S-rooms
+  int candidates{0};    // local room-pair candidates
+  int reused_rooms{0};  // S-rooms whose candidates came from the previous revision
+  int seeds{0};         // global candidates grown
+  int hypotheses{0};    // distinct global candidates scored
   double milliseconds{0.0};
 };
 
@@ -48,6 +48,11 @@ class GraphMatcher {
   /// Matches one S-Graph revision. Bad input is reported in GraphMatch::warnings and left out;
   /// nothing usable gives NONE.
   GraphMatch Match(const sgraph::SGraph& graph);
+  /// Forgets the S-Graph matched so far (it restarted): no reuse, no previous best motion.
+  void ForgetHistory() {
+    cache_.clear();
+    last_best_.reset();
+  }
 
   const MatchStats& LastStats() const { return stats_; }
   const MatcherConfig& config() const { return config_; }

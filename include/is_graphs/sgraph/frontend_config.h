@@ -18,6 +18,17 @@ struct FrontendConfig {
   double max_odom_extrapolation{0.15};
   double time_reset_threshold{1.0};
 
+  // Track loss (a kidnapped robot, an odometry jump): once the map holds track_loss_min_keyframes
+  // keyframes, a keyframe that sees at least track_loss_min_walls wall segments of which at
+  // least track_loss_new_share match no mapped plane restarts the S-Graph from that keyframe
+  // (while tracking, even walking into a new room, the walls just left stay in view: at most a
+  // third are new on the D bags). Off when detect_track_loss is false.
+  bool detect_track_loss{true};
+  int track_loss_min_keyframes{5};
+  int track_loss_min_walls{5};
+  double track_loss_new_share{0.8};
+  double track_check_period{1.0};  // s: scans between keyframes are checked this often (0: never)
+
   // Filtering (ranges from the sensor; voxel edge of the extraction cloud and the map cloud).
   double min_range{0.6};
   double max_range{20.0};
@@ -37,9 +48,9 @@ struct FrontendConfig {
   // beam (sensor_max_elevation_deg) cannot see that high on it.
   double wall_min_rise{0.45};
   double sensor_max_elevation_deg{15.0};
-  double segment_gap{0.5};         // coplanar points further apart are different segments
-  double point_sigma{0.03};        // range noise used for the plane covariance
-  int max_effective_points{150};   // cap on independent points (correlated errors)
+  double segment_gap{0.5};        // coplanar points further apart are different segments
+  double point_sigma{0.03};       // range noise used for the plane covariance
+  int max_effective_points{150};  // cap on independent points (correlated errors)
   bool extract_floor{true};
   // A floor candidate is dropped when more than this share of its points have other points
   // straight above them (within floor_cover_height): walls, not a floor.

@@ -10,6 +10,7 @@
 #include "is_graphs/sgraph/frontend_config.h"
 #include "is_graphs/sgraph/keyframe_selector.h"
 #include "is_graphs/sgraph/odometry_buffer.h"
+#include "is_graphs/sgraph/plane_association.h"
 #include "is_graphs/sgraph/plane_extraction.h"
 #include "is_graphs/sgraph/point_types.h"
 #include "is_graphs/sgraph/sgraph.h"
@@ -37,6 +38,11 @@ class SGraphBuilder {
     int keyframe{-1};     // the new keyframe's id
     int num_segments{0};  // planes seen in the keyframe
     int num_new_planes{0};
+    int num_walls{0};      // of the planes seen, the vertical ones
+    int num_new_walls{0};  // ... that matched no mapped plane
+    // Track lost (most walls seen match nothing mapped: a kidnapped robot, an odometry jump):
+    // the S-Graph was dropped and restarted from this keyframe (see FrontendConfig).
+    bool restarted{false};
     // Stage times of a keyframe scan [ms] (the benchmark's per-stage latency).
     double preprocess_ms{0.0};   // deskew, range and voxel filters
     double extraction_ms{0.0};   // floor and wall plane extraction
@@ -77,6 +83,23 @@ class SGraphBuilder {
   };
 
   void ResetLocked();
+  /// Drops the graph but keeps the odometry and the stamps (a restart after a track loss).
+  void ClearGraphLocked();
+  /// Appends a keyframe at odom_pose with its cloud, associates its segments, finds rooms.
+  void AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& odom_pose, PointList cloud,
+                            const std::vector<PlaneSegment>& segments, ScanResult& result);
+  // Track loss (sgraph_builder_track.cpp).
+  bool TrackLost(const ScanResult& result) const;
+  bool TrackCheckDueLocked(double stamp) const;
+  /// Counts in result the walls among `segments` and those that match no mapped plane.
+  void CountWallsLocked(const Eigen::Isometry3d& pose, const std::vector<PlaneSegment>& segments,
+                        ScanResult& result) const;
+  /// Drops the graph and starts it again from a keyframe of this scan (result: its warning).
+  void RestartLocked(double stamp, const Eigen::Isometry3d& odom_pose, PointList cloud,
+                     const std::vector<PlaneSegment>& segments, ScanResult& result);
+  std::vector<MapPlaneView> MapViewsLocked() const;
+  static std::vector<PlaneSegment> InMap(const std::vector<PlaneSegment>& segments,
+                                         const Eigen::Isometry3d& pose);
   // Association and map update for one keyframe's segments (in base_link); mutex held.
   void AddPlaneObservations(int keyframe, const std::vector<PlaneSegment>& segments,
                             ScanResult& result);
@@ -105,6 +128,7 @@ class SGraphBuilder {
   KeyframeSelector selector_;
   double last_odom_stamp_{-1.0};
   double last_scan_stamp_{-1.0};
+  double last_track_check_{-1.0};
   std::uint64_t generation_{0};  // bumped by Reset(): stale optimizations are discarded
   unsigned revision_{0};
   int optimized_keyframes_{0};

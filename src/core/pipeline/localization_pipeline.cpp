@@ -39,7 +39,10 @@ std::string LocalizationPipeline::SetAGraph(const agraph::AGraph& graph) {
 std::optional<Eigen::Isometry3d> LocalizationPipeline::AddOdometry(
     double stamp, const Eigen::Isometry3d& odom_T_base) {
   const auto r = builder_.AddOdometry(stamp, odom_T_base);
-  if (r.reset) merger_.Reset();
+  if (r.reset) {
+    merger_.Reset();
+    matcher_.ForgetHistory();
+  }
   if (!r.accepted || !merger_.merged()) return std::nullopt;
   return bim_T_odom_ * odom_T_base;
 }
@@ -50,6 +53,16 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   const auto result = builder_.AddScan(scan, base_T_sensor);
   times_.scan.push_back(MsSince(t0));
   if (result.status != sgraph::SGraphBuilder::ScanStatus::kKeyframe) return result;
+  if (result.restarted) {  // track lost: the map the merge was built on is gone
+    merger_.Reset();
+    matcher_.ForgetHistory();
+    bim_T_odom_ = bim_T_map_ = Eigen::Isometry3d::Identity();
+    PipelineEvent e;
+    e.stamp = scan.stamp;
+    e.kind = "sgraph_restarted";
+    e.message = result.warning;
+    events_.push_back(e);
+  }
   times_.preprocess.push_back(result.preprocess_ms);
   times_.extraction.push_back(result.extraction_ms);
   times_.association.push_back(result.association_ms);

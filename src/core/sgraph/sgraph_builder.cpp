@@ -23,10 +23,15 @@ void SGraphBuilder::Reset() {
 }
 
 void SGraphBuilder::ResetLocked() {
+  last_track_check_ = -1.0;
   odometry_.Clear();
   selector_.Reset();
   last_odom_stamp_ = -1.0;
   last_scan_stamp_ = -1.0;
+  ClearGraphLocked();
+}
+
+void SGraphBuilder::ClearGraphLocked() {
   ++generation_;
   optimized_keyframes_ = 0;
   map_T_odom_ = Eigen::Isometry3d::Identity();
@@ -94,6 +99,7 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
   // Odometry and time checks under the lock; the heavy work on a copy of the poses without it.
   OdometryBuffer odometry(0.0);
   Eigen::Isometry3d odom_pose;
+  bool keyframe = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (last_scan_stamp_ >= 0.0 && scan.stamp < last_scan_stamp_ - frontend_.time_reset_threshold) {
@@ -116,10 +122,13 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
     }
     last_scan_stamp_ = scan.stamp;
     odom_pose = *pose;
-    if (!selector_.IsKeyframe(odom_pose)) {
+    keyframe = selector_.IsKeyframe(odom_pose);
+    // Between keyframes (a robot standing still, or carried) the track is checked this often.
+    if (!keyframe && !TrackCheckDueLocked(scan.stamp)) {
       result.status = ScanStatus::kNotKeyframe;
       return result;
     }
+    last_track_check_ = scan.stamp;
     odometry = odometry_;
   }
 
@@ -157,10 +166,37 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
     result.warning = "the S-Graph was reset while the cloud was processed: skipped";
     return result;
   }
+  if (!keyframe) {  // a track check only: nothing is added unless the track is lost
+    CountWallsLocked(map_T_odom_ * odom_pose, segments, result);
+    if (!TrackLost(result)) {
+      result.status = ScanStatus::kNotKeyframe;  // with the walls counted
+      return result;
+    }
+    selector_.Accept(odom_pose);
+    RestartLocked(scan.stamp, odom_pose, std::move(map_points), segments, result);
+    return result;
+  }
   selector_.Accept(odom_pose);
+  const bool can_lose_track = frontend_.detect_track_loss && static_cast<int>(keyframes_.size()) >=
+                                                                 frontend_.track_loss_min_keyframes;
+  PointList cloud_copy;
+  if (can_lose_track) cloud_copy = map_points;
+  AppendKeyframeLocked(scan.stamp, odom_pose, std::move(map_points), segments, result);
+  if (can_lose_track && TrackLost(result))
+    RestartLocked(scan.stamp, odom_pose, std::move(cloud_copy), segments, result);
+  return result;
+}
+
+void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& odom_pose,
+                                         PointList cloud, const std::vector<PlaneSegment>& segments,
+                                         ScanResult& result) {
+  using Clock = std::chrono::steady_clock;
+  const auto ms_since = [](Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  };
   Keyframe kf;
   kf.id = static_cast<int>(keyframes_.size());
-  kf.stamp = scan.stamp;
+  kf.stamp = stamp;
   kf.odom_pose = odom_pose;
   kf.pose = map_T_odom_ * odom_pose;
   if (!keyframes_.empty()) {
@@ -170,42 +206,21 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
     kf.odom_information = OdometryInformation(kf.relative_odom);
   }
   keyframes_.push_back(kf);
-  clouds_.push_back(std::move(map_points));
+  clouds_.push_back(std::move(cloud));
   result.status = ScanStatus::kKeyframe;
   result.keyframe = kf.id;
-  t0 = Clock::now();
+  auto t0 = Clock::now();
   AddPlaneObservations(kf.id, segments, result);
   result.association_ms = ms_since(t0);
   t0 = Clock::now();
   if (frontend_.detect_rooms) UpdateRooms(kf.id);
   result.rooms_ms = ms_since(t0);
-  return result;
 }
 
 void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSegment>& segments,
                                          ScanResult& result) {
-  const Eigen::Isometry3d& pose = keyframes_[keyframe].pose;
-  std::vector<MapPlaneView> views;
-  views.reserve(planes_.size());
-  for (const auto& p : planes_) {
-    if (p.merged_into >= 0) continue;
-    MapPlaneView v;
-    v.id = p.plane.id;
-    v.plane = p.plane.plane;
-    v.covariance = p.plane.covariance;
-    v.horizontal = p.horizontal;
-    v.start = p.start;
-    v.end = p.end;
-    views.push_back(v);
-  }
-  std::vector<PlaneSegment> in_map_segments;
-  in_map_segments.reserve(segments.size());
-  for (const auto& segment : segments) {
-    PlaneSegment in_map = TransformSegment(segment, pose);
-    in_map.low = pose.translation().z() + segment.low;  // heights in M (walls are vertical)
-    in_map.high = pose.translation().z() + segment.high;
-    in_map_segments.push_back(in_map);
-  }
+  const std::vector<MapPlaneView> views = MapViewsLocked();
+  const std::vector<PlaneSegment> in_map_segments = InMap(segments, keyframes_[keyframe].pose);
   // Two coplanar segments of one scan may land on one mapped plane (a wall behind an
   // obstacle), two parallel ones apart may not.
   const std::vector<Association> associations = AssociateScan(in_map_segments, views, frontend_);
@@ -237,7 +252,9 @@ void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSe
       plane_id = mp.plane.id;
       planes_.push_back(mp);
       ++result.num_new_planes;
+      if (!segment.horizontal) ++result.num_new_walls;
     }
+    if (!segment.horizontal) ++result.num_walls;
     PlaneObservation o;
     o.keyframe = keyframe;
     o.plane = plane_id;
