@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo test bench-conversion buildings bags bags-short bench-bags bench-sgraph bench-matching evaluate clean format
+.PHONY: all setup build demo test bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching evaluate clean format
 
 all: build
 
@@ -24,6 +24,12 @@ test: build
 # Regenerates bim/*.ifc from bim/layouts/*.yaml.
 buildings: setup
 	@.venv/bin/python3 scripts/make_building.py --all
+
+# Per-stage latency, real-time factor and peak memory of the whole pipeline (replay_pipeline)
+# against building size and run length; makes a 540 s D6 bag in .ws/bench/bags (BENCH_LONG=0: not).
+# BAGS_DIR=dir, BENCH_REPEATS=3. Results: .ws/bench/results.md, results.json.
+bench: build
+	@.venv/bin/python3 scripts/bench.py
 
 # Conversion time and peak memory for the real IFC files and the project's buildings.
 bench-conversion: setup

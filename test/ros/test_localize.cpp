@@ -1,7 +1,23 @@
-// rostest of the whole pipeline (agraph_node, sgraph_node, matcher_node, merger_node) on a short
-// bag with simulated time: no pose_bim before LOCALIZED, localized before the bag ends, the APE
-// (x, y) of pose_bim against ground_truth/pose without alignment, the yaw error, tf bim -> map;
-// and the real merger_node binary on bad parameters.
+// rostest of the whole pipeline (agraph_node, sgraph_node, matcher_node, merger_node) on one
+// scenario bag played with simulated time, against that scenario's own contract (the test node's
+// private parameters, set in its .test file; test/ros/localize_*.test):
+//
+//   always                 no pose_bim before the first LOCALIZED, and no pose_bim is wrong:
+//                          each within ~max_wrong_distance [m] and ~max_wrong_yaw_deg of ground
+//                          truth (localizing is allowed but not required unless expected);
+//   ~expect_localized      localized within ~max_seconds_to_localize of the bag start, still
+//                          localized at the end (unless a kidnap), at least ~min_poses poses,
+//                          the APE (x, y, no alignment) RMSE / max and the yaw RMSE / max within
+//                          bounds, tf bim -> map;
+//   ~kidnap_window > 0     the robot is carried (found as the jump in ground_truth/pose): LOST
+//                          within the window after the carry, no pose_bim while LOST, and the
+//                          poses from carry + window on are not wrong (the APE bounds apply to
+//                          the poses outside [carry, carry + window));
+//   ~max_seconds_to_relocalize > 0
+//                          LOCALIZED again within that many seconds after the carry, and at
+//                          the end.
+//
+// Also the real merger_node binary on bad parameters (filtered out of all .test files but one).
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
@@ -11,11 +27,14 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include "../../src/ros/pose_conversions.h"
@@ -25,17 +44,60 @@
 namespace is_graphs {
 namespace {
 
-// The APE bound on x, y after localization: the target, 0.05 m. Measured on this bag
-// (D5_rotated at half duration, 2x), two runs: RMSE 0.018 / 0.025 m, max 0.052 / 0.064 m;
-// yaw max 0.32 / 1.4°. Yaw: RMSE within the 1°, no single pose beyond 2°.
-constexpr double kMaxApeXY = 0.05;
-constexpr double kMaxYawRmseDeg = 1.0;
-constexpr double kMaxYawDeg = 2.0;  // transients when the S-Graph re-solves (see the report)
+constexpr double kRadToDeg = 180.0 / M_PI;
+// A ground-truth step larger than this between two samples (50 Hz) is the kidnap's carry.
+constexpr double kCarryJump = 1.0;  // m
+// Stamps of pose_bim (odometry's) and of localization_status (the merger's clock when sent)
+// come from two clocks of one simulated time: this much slack between them.
+constexpr double kStampSlack = 0.25;  // s
+
+// The scenario's contract, from the test node's private parameters.
+struct Contract {
+  std::string scenario{"?"};
+  bool expect_localized{false};
+  double max_seconds_to_localize{0.0};
+  int min_poses{50};
+  double max_ape_rmse{0.05}, max_ape_max{0.10};
+  double max_yaw_rmse_deg{1.0}, max_yaw_deg{2.0};
+  double max_wrong_distance{0.5}, max_wrong_yaw_deg{5.0};
+  double kidnap_window{0.0};
+  double max_seconds_to_relocalize{0.0};  // 0: relocalizing is not required
+  double max_wait{150.0};                 // wall s to collect, at most
+  double bag_end_quiet{4.0};              // wall s without ground truth: the bag is over
+};
+
+Contract ReadContract() {
+  ros::NodeHandle pnh("~");
+  Contract c;
+  pnh.param("scenario", c.scenario, c.scenario);
+  pnh.param("expect_localized", c.expect_localized, c.expect_localized);
+  pnh.param("max_seconds_to_localize", c.max_seconds_to_localize, c.max_seconds_to_localize);
+  pnh.param("min_poses", c.min_poses, c.min_poses);
+  pnh.param("max_ape_rmse", c.max_ape_rmse, c.max_ape_rmse);
+  pnh.param("max_ape_max", c.max_ape_max, c.max_ape_max);
+  pnh.param("max_yaw_rmse_deg", c.max_yaw_rmse_deg, c.max_yaw_rmse_deg);
+  pnh.param("max_yaw_deg", c.max_yaw_deg, c.max_yaw_deg);
+  pnh.param("max_wrong_distance", c.max_wrong_distance, c.max_wrong_distance);
+  pnh.param("max_wrong_yaw_deg", c.max_wrong_yaw_deg, c.max_wrong_yaw_deg);
+  pnh.param("kidnap_window", c.kidnap_window, c.kidnap_window);
+  pnh.param("max_seconds_to_relocalize", c.max_seconds_to_relocalize, c.max_seconds_to_relocalize);
+  pnh.param("max_wait", c.max_wait, c.max_wait);
+  pnh.param("bag_end_quiet", c.bag_end_quiet, c.bag_end_quiet);
+  return c;
+}
+
+// One pose_bim paired with the ground truth of its stamp.
+struct Paired {
+  double stamp;
+  double error_xy;   // m
+  double error_yaw;  // rad, signed
+};
 
 class LocalizeTest : public ::testing::Test {
  protected:
   // Collects pose_bim, localization_status and ground truth until the bag has played.
   static void SetUpTestSuite() {
+    c_ = ReadContract();
     ros::NodeHandle nh;
     ros::Subscriber ps = nh.subscribe<geometry_msgs::PoseWithCovarianceStamped>(
         "pose_bim", 1000,
@@ -67,16 +129,63 @@ class LocalizeTest : public ::testing::Test {
     tf_ = new tf2_ros::Buffer(ros::Duration(60.0));
     listener_ = new tf2_ros::TransformListener(*tf_);
     const ros::WallTime start = ros::WallTime::now();
-    while (ros::ok() && (ros::WallTime::now() - start).toSec() < 150.0) {
+    while (ros::ok() && (ros::WallTime::now() - start).toSec() < c_.max_wait) {
       ros::WallDuration(0.2).sleep();
       std::lock_guard<std::mutex> lock(mutex_);
-      if (!truth_.empty() && (ros::WallTime::now() - last_truth_wall_).toSec() > 4.0) break;
+      if (!truth_.empty() && (ros::WallTime::now() - last_truth_wall_).toSec() > c_.bag_end_quiet)
+        break;
     }
+    std::lock_guard<std::mutex> lock(mutex_);
+    collect_seconds_ = (ros::WallTime::now() - start).toSec();
     std::string error;
     // No timeout: simulated time stands still once the bag is over.
     tf_ok_ = tf_->canTransform("bim", "map", ros::Time(0), &error);
     tf_error_ = error;
+    Analyze();
   }
+
+  // The carry (kidnap), the pairs of pose_bim and ground truth, the LOST intervals.
+  static void Analyze() {
+    if (truth_.empty()) return;
+    bag_start_ = truth_.begin()->first * 1e-9;
+    bag_end_ = truth_.rbegin()->first * 1e-9;
+    for (auto it = truth_.begin(), next = std::next(it); next != truth_.end(); ++it, ++next) {
+      if ((next->second.translation() - it->second.translation()).head<2>().norm() > kCarryJump) {
+        carry_ = next->first * 1e-9;
+        ++carries_;
+      }
+    }
+    for (const auto& p : poses_) {
+      auto it = truth_.lower_bound(p.header.stamp.toNSec());
+      if (it == truth_.end()) continue;
+      if (std::abs(static_cast<double>(it->first) - p.header.stamp.toNSec()) > 5e6) continue;
+      const Eigen::Isometry3d est = ros_conversions::FromPose(p.pose.pose);
+      paired_.push_back({p.header.stamp.toSec(),
+                         (est.translation() - it->second.translation()).head<2>().norm(),
+                         geometry::NormalizeAngle(geometry::Yaw(est) - geometry::Yaw(it->second))});
+    }
+    // LOST intervals: from a LOST status to the next LOCALIZED one (or the end).
+    double lost_from = -1.0;
+    for (const auto& s : statuses_) {
+      const double t = s.header.stamp.toSec();
+      if (s.state == is_graphs::LocalizationStatus::LOST && lost_from < 0.0) lost_from = t;
+      if (s.state == is_graphs::LocalizationStatus::LOCALIZED && lost_from >= 0.0) {
+        lost_.push_back({lost_from, t});
+        lost_from = -1.0;
+      }
+    }
+    if (lost_from >= 0.0) lost_.push_back({lost_from, std::numeric_limits<double>::infinity()});
+  }
+
+  // Inside [carry, carry + window): the poses the kidnap may have made wrong.
+  static bool InCarryWindow(double stamp) {
+    return c_.kidnap_window > 0.0 && carries_ > 0 && stamp >= carry_ &&
+           stamp < carry_ + c_.kidnap_window;
+  }
+
+  static std::string Where() { return "[" + c_.scenario + "] "; }
+
+  static inline Contract c_;
   static inline std::mutex mutex_;
   static inline std::vector<geometry_msgs::PoseWithCovarianceStamped> poses_;
   static inline std::vector<is_graphs::LocalizationStatus> statuses_;
@@ -89,60 +198,180 @@ class LocalizeTest : public ::testing::Test {
   static inline tf2_ros::TransformListener* listener_ = nullptr;
   static inline bool tf_ok_ = false;
   static inline std::string tf_error_;
+  static inline double collect_seconds_ = 0.0;
+  static inline double bag_start_ = 0.0, bag_end_ = 0.0;
+  static inline double carry_ = 0.0;
+  static inline int carries_ = 0;
+  static inline std::vector<Paired> paired_;
+  static inline std::vector<std::pair<double, double>> lost_;
 };
 
-TEST_F(LocalizeTest, LocalizesBeforeTheBagEndsAndNeverPublishesBefore) {
+TEST_F(LocalizeTest, BagPlayedAndNoPoseBeforeLocalized) {
   std::lock_guard<std::mutex> lock(mutex_);
-  ASSERT_FALSE(truth_.empty()) << "no ground truth: the bag did not play";
-  ASSERT_FALSE(statuses_.empty()) << "no localization_status";
-  EXPECT_EQ(statuses_.front().state, is_graphs::LocalizationStatus::NOT_LOCALIZED);
-  ASSERT_TRUE(localized_seen_) << "not localized; last status: " << statuses_.back().message;
-  EXPECT_EQ(statuses_.back().state, is_graphs::LocalizationStatus::LOCALIZED)
-      << statuses_.back().message;
-  const double since = first_localized_.localized_since.toSec();
-  for (const auto& p : poses_)
-    EXPECT_GE(p.header.stamp.toSec(), since - 1e-6) << "pose_bim before the first merge";
-  EXPECT_LE(poses_before_status_, 5) << "pose_bim arrived before the LOCALIZED status";
-  ASSERT_GT(poses_.size(), 50u) << "too few pose_bim after localization";
-  const double bag_end = (truth_.rbegin()->first) * 1e-9;
-  EXPECT_LT(since, bag_end);
+  ASSERT_FALSE(truth_.empty()) << Where() << "no ground truth: the bag did not play";
+  ASSERT_FALSE(statuses_.empty()) << Where() << "no localization_status";
   std::printf(
-      "[ localize ] localized %.1f s after start, after %.1f m, at t = %.1f (bag end %.1f)\n",
-      first_localized_.seconds_to_localize, first_localized_.distance_to_localize, since, bag_end);
-  for (int i = 0; i < 36; i += 7) EXPECT_GT(first_localized_.covariance[i], 0.0);
+      "[ %s ] bag %.1f s of ground truth, collected for %.1f s wall; %zu pose_bim, "
+      "%zu statuses, last: %s\n",
+      c_.scenario.c_str(), bag_end_ - bag_start_, collect_seconds_, poses_.size(), statuses_.size(),
+      statuses_.back().message.c_str());
+  EXPECT_EQ(statuses_.front().state, is_graphs::LocalizationStatus::NOT_LOCALIZED)
+      << Where() << statuses_.front().message;
+  if (!localized_seen_) {
+    EXPECT_TRUE(poses_.empty()) << Where() << poses_.size()
+                                << " pose_bim but never a LOCALIZED status";
+    return;
+  }
+  const double since = first_localized_.localized_since.toSec();
+  int early = 0;
+  for (const auto& p : poses_)
+    if (p.header.stamp.toSec() < since - 1e-6) ++early;
+  EXPECT_EQ(early, 0) << Where() << early
+                      << " pose_bim stamped before the first merge (t = " << since - bag_start_
+                      << " s into the bag)";
+  EXPECT_LE(poses_before_status_, 5) << Where() << "pose_bim arrived before the LOCALIZED status";
 }
 
-TEST_F(LocalizeTest, PoseInTheBimMatchesGroundTruth) {
+TEST_F(LocalizeTest, LocalizesInTime) {
   std::lock_guard<std::mutex> lock(mutex_);
-  ASSERT_FALSE(poses_.empty());
+  ASSERT_FALSE(truth_.empty()) << Where() << "no ground truth: the bag did not play";
+  if (localized_seen_)
+    std::printf(
+        "[ %s ] localized at %.1f s into the bag (%.1f s, %.1f m after the start by the "
+        "merger), bag end %.1f s\n",
+        c_.scenario.c_str(), first_localized_.localized_since.toSec() - bag_start_,
+        first_localized_.seconds_to_localize, first_localized_.distance_to_localize,
+        bag_end_ - bag_start_);
+  else
+    std::printf("[ %s ] not localized; last status: %s\n", c_.scenario.c_str(),
+                statuses_.empty() ? "(none)" : statuses_.back().message.c_str());
+  if (!c_.expect_localized)
+    GTEST_SKIP() << Where() << "not expected to localize on this bag (yet): only the "
+                 << "no-wrong-pose contract applies";
+  ASSERT_FALSE(statuses_.empty()) << Where() << "no localization_status";
+  ASSERT_TRUE(localized_seen_) << Where() << "not localized within the bag; last status: "
+                               << statuses_.back().message;
+  const double t = first_localized_.localized_since.toSec() - bag_start_;
+  EXPECT_LE(t, c_.max_seconds_to_localize)
+      << Where() << "localized at " << t << " s into the bag, later than the bound "
+      << c_.max_seconds_to_localize << " s";
+  for (int i = 0; i < 36; i += 7)
+    EXPECT_GT(first_localized_.covariance[i], 0.0)
+        << Where() << "covariance diagonal " << i / 7 << " of the LOCALIZED status";
+  if (c_.kidnap_window <= 0.0 || c_.max_seconds_to_relocalize > 0.0) {
+    EXPECT_EQ(statuses_.back().state, is_graphs::LocalizationStatus::LOCALIZED)
+        << Where() << "not localized at the end: " << statuses_.back().message;
+  }
+}
+
+TEST_F(LocalizeTest, ApeWithinBounds) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!c_.expect_localized)
+    GTEST_SKIP() << Where() << "not expected to localize on this bag (yet): no APE bound";
+  ASSERT_TRUE(localized_seen_) << Where() << "not localized: no APE";
   double sum_sq = 0.0, max_xy = 0.0, max_yaw = 0.0, sum_yaw_sq = 0.0;
   int n = 0;
-  for (const auto& p : poses_) {
-    auto it = truth_.lower_bound(p.header.stamp.toNSec());
-    if (it == truth_.end()) continue;
-    if (std::abs(static_cast<double>(it->first) - p.header.stamp.toNSec()) > 5e6) continue;
-    const Eigen::Isometry3d est = ros_conversions::FromPose(p.pose.pose);
-    const Eigen::Vector2d e = (est.translation() - it->second.translation()).head<2>();
-    sum_sq += e.squaredNorm();
-    max_xy = std::max(max_xy, e.norm());
-    const double yaw = geometry::NormalizeAngle(geometry::Yaw(est) - geometry::Yaw(it->second));
-    max_yaw = std::max(max_yaw, std::abs(yaw));
-    sum_yaw_sq += yaw * yaw;
+  for (const auto& p : paired_) {
+    if (InCarryWindow(p.stamp)) continue;
+    sum_sq += p.error_xy * p.error_xy;
+    max_xy = std::max(max_xy, p.error_xy);
+    max_yaw = std::max(max_yaw, std::abs(p.error_yaw));
+    sum_yaw_sq += p.error_yaw * p.error_yaw;
     ++n;
   }
-  ASSERT_GT(n, 50) << "pose_bim stamps do not meet ground truth stamps";
+  ASSERT_GE(n, c_.min_poses) << Where() << "too few pose_bim paired with ground truth ("
+                             << poses_.size() << " pose_bim received)";
   const double rmse = std::sqrt(sum_sq / n);
-  const double yaw_rmse_deg = std::sqrt(sum_yaw_sq / n) * 180.0 / M_PI;
+  const double yaw_rmse_deg = std::sqrt(sum_yaw_sq / n) * kRadToDeg;
+  const double max_yaw_deg = max_yaw * kRadToDeg;
   std::printf(
-      "[ localize ] APE x,y: RMSE %.4f m, max %.4f m over %d poses; yaw RMSE %.3f deg, "
+      "[ %s ] APE x,y: RMSE %.4f m, max %.4f m over %d poses; yaw RMSE %.3f deg, "
       "max %.3f deg\n",
-      rmse, max_xy, n, yaw_rmse_deg, max_yaw * 180.0 / M_PI);
-  EXPECT_LT(yaw_rmse_deg, kMaxYawRmseDeg);
-  EXPECT_LT(rmse, kMaxApeXY);
-  EXPECT_LT(max_yaw * 180.0 / M_PI, kMaxYawDeg);
+      c_.scenario.c_str(), rmse, max_xy, n, yaw_rmse_deg, max_yaw_deg);
+  RecordProperty("ape_rmse_m", std::to_string(rmse));
+  RecordProperty("ape_max_m", std::to_string(max_xy));
+  RecordProperty("yaw_rmse_deg", std::to_string(yaw_rmse_deg));
+  RecordProperty("yaw_max_deg", std::to_string(max_yaw_deg));
+  EXPECT_LE(rmse, c_.max_ape_rmse) << Where() << "APE x,y RMSE [m]";
+  EXPECT_LE(max_xy, c_.max_ape_max) << Where() << "APE x,y max [m]";
+  EXPECT_LE(yaw_rmse_deg, c_.max_yaw_rmse_deg) << Where() << "yaw RMSE [deg]";
+  EXPECT_LE(max_yaw_deg, c_.max_yaw_deg) << Where() << "yaw max [deg]";
 }
 
-TEST_F(LocalizeTest, BroadcastsBimToMap) { EXPECT_TRUE(tf_ok_) << tf_error_; }
+// The safety contract of every scenario: a pose in the BIM may be missing, never wrong.
+TEST_F(LocalizeTest, NeverAWrongPose) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ASSERT_FALSE(truth_.empty()) << Where() << "no ground truth: the bag did not play";
+  ASSERT_GE(paired_.size(), poses_.size() * 9 / 10)
+      << Where() << "pose_bim stamps do not meet ground-truth stamps (" << paired_.size() << " of "
+      << poses_.size() << " paired)";
+  int wrong = 0, checked = 0;
+  const Paired* worst = nullptr;
+  for (const auto& p : paired_) {
+    if (InCarryWindow(p.stamp)) continue;
+    ++checked;
+    if (p.error_xy > c_.max_wrong_distance ||
+        std::abs(p.error_yaw) * kRadToDeg > c_.max_wrong_yaw_deg) {
+      ++wrong;
+      if (!worst || p.error_xy > worst->error_xy) worst = &p;
+    }
+  }
+  std::printf("[ %s ] %d pose_bim checked for a wrong pose (> %.2f m or > %.1f deg): %d wrong\n",
+              c_.scenario.c_str(), checked, c_.max_wrong_distance, c_.max_wrong_yaw_deg, wrong);
+  EXPECT_EQ(wrong, 0) << Where() << wrong << " of " << checked
+                      << " pose_bim are wrong; the worst at t = "
+                      << (worst ? worst->stamp - bag_start_ : 0.0)
+                      << " s: " << (worst ? worst->error_xy : 0.0) << " m, "
+                      << (worst ? worst->error_yaw * kRadToDeg : 0.0) << " deg off";
+}
+
+TEST_F(LocalizeTest, KidnapIsDetected) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (c_.kidnap_window <= 0.0) GTEST_SKIP() << Where() << "no kidnap in this scenario";
+  ASSERT_EQ(carries_, 1) << Where() << "ground truth should jump (> " << kCarryJump
+                         << " m) exactly once: the carry";
+  ASSERT_TRUE(localized_seen_) << Where() << "never localized before the carry";
+  ASSERT_LT(first_localized_.localized_since.toSec(), carry_)
+      << Where() << "localized only after the carry: the kidnap tests nothing";
+  const auto lost =
+      std::find_if(lost_.begin(), lost_.end(), [](const auto& l) { return l.first >= carry_; });
+  ASSERT_NE(lost, lost_.end()) << Where() << "never LOST after the carry at " << carry_ - bag_start_
+                               << " s";
+  std::printf("[ %s ] carried at %.1f s into the bag; LOST %.1f s later%s\n", c_.scenario.c_str(),
+              carry_ - bag_start_, lost->first - carry_,
+              std::isfinite(lost->second) ? ", localized again" : ", not localized again");
+  EXPECT_LE(lost->first, carry_ + c_.kidnap_window)
+      << Where() << "LOST " << lost->first - carry_ << " s after the carry, bound "
+      << c_.kidnap_window << " s";
+  if (c_.max_seconds_to_relocalize > 0.0) {
+    EXPECT_TRUE(std::isfinite(lost->second)) << Where() << "not localized again after the carry";
+    if (std::isfinite(lost->second)) {
+      std::printf("[ %s ] localized again %.1f s after the carry\n", c_.scenario.c_str(),
+                  lost->second - carry_);
+      EXPECT_LE(lost->second - carry_, c_.max_seconds_to_relocalize)
+          << Where() << "localized again " << lost->second - carry_ << " s after the carry";
+    }
+  }
+  // No pose_bim while LOST (every LOST interval, with the slack between the two clocks).
+  int while_lost = 0;
+  double first_bad = 0.0;
+  for (const auto& p : poses_) {
+    const double t = p.header.stamp.toSec();
+    for (const auto& [from, to] : lost_)
+      if (t > from + kStampSlack && t < to - kStampSlack) {
+        if (while_lost++ == 0) first_bad = t;
+      }
+  }
+  EXPECT_EQ(while_lost, 0) << Where() << while_lost
+                           << " pose_bim while LOST, the first at t = " << first_bad - bag_start_
+                           << " s";
+}
+
+TEST_F(LocalizeTest, BroadcastsBimToMap) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!c_.expect_localized) GTEST_SKIP() << Where() << "not expected to localize";
+  EXPECT_TRUE(tf_ok_) << Where() << tf_error_;
+}
 
 std::pair<int, std::string> RunNode(const std::string& args) {
   return testing_support::RunNode(IS_GRAPHS_MERGER_NODE, "bad_merger_node", args);
