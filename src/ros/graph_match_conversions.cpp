@@ -43,9 +43,15 @@ is_graphs::GraphMatch ToMsg(const matching::GraphMatch& match) {
 matching::GraphMatch FromMsg(const is_graphs::GraphMatch& msg) {
   matching::GraphMatch match;
   switch (msg.status) {
-    case is_graphs::GraphMatch::UNIQUE: match.status = matching::MatchStatus::kUnique; break;
-    case is_graphs::GraphMatch::AMBIGUOUS: match.status = matching::MatchStatus::kAmbiguous; break;
-    default: match.status = matching::MatchStatus::kNone; break;
+    case is_graphs::GraphMatch::UNIQUE:
+      match.status = matching::MatchStatus::kUnique;
+      break;
+    case is_graphs::GraphMatch::AMBIGUOUS:
+      match.status = matching::MatchStatus::kAmbiguous;
+      break;
+    default:
+      match.status = matching::MatchStatus::kNone;
+      break;
   }
   match.a_graph_sha256 = msg.a_graph_sha256;
   match.s_graph_revision = msg.s_graph_revision;

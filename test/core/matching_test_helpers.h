@@ -27,12 +27,15 @@ inline const agraph::AGraph* LoadBuildingOnce(const std::string& path, std::stri
   const agraph::IfcConversionConfig config;
   if (!std::filesystem::exists(path)) {
     *why = path + " is not there";
-  } else if (!std::filesystem::exists(config.converter) || !std::filesystem::exists(config.python)) {
+  } else if (!std::filesystem::exists(config.converter) ||
+             !std::filesystem::exists(config.python)) {
     *why = "no IFC converter (" + config.python + " " + config.converter + "): run make setup";
   } else {
     auto loaded = agraph::LoadBim(path, config);
-    if (loaded.ok()) graph = std::make_unique<agraph::AGraph>(std::move(loaded).value());
-    else *why = loaded.error();
+    if (loaded.ok())
+      graph = std::make_unique<agraph::AGraph>(std::move(loaded).value());
+    else
+      *why = loaded.error();
   }
   return (cache[path] = std::move(graph)).get();
 }
@@ -52,8 +55,8 @@ inline int RoomByName(const agraph::AGraph& g, const std::string& name) {
 inline bool MatchIsCorrect(const matching::GraphMatch& m, const matching::SyntheticSGraph& s,
                            std::string* why = nullptr) {
   const Eigen::Isometry3d& truth = s.bim_T_map;
-  const double yaw_error = std::abs(geometry::NormalizeAngle(
-      geometry::Yaw(m.bim_T_map) - geometry::Yaw(truth)));
+  const double yaw_error =
+      std::abs(geometry::NormalizeAngle(geometry::Yaw(m.bim_T_map) - geometry::Yaw(truth)));
   std::ostringstream out;
   bool ok = yaw_error < 3.0 * M_PI / 180.0;
   if (!ok) out << "yaw off by " << yaw_error * 180.0 / M_PI << " deg; ";

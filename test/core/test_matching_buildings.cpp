@@ -49,7 +49,8 @@ TEST(MatchingBuildings, EveryBuildingWholeIsUniqueAndCorrect) {
       const SyntheticSGraph s = MakeSyntheticSGraph(*g, c);
       const GraphMatch m = MatchOnce(*g, s);
       std::string why;
-      EXPECT_EQ(m.status, MatchStatus::kUnique) << name << " trial " << k << " hyps " << m.hypotheses;
+      EXPECT_EQ(m.status, MatchStatus::kUnique)
+          << name << " trial " << k << " hyps " << m.hypotheses;
       EXPECT_TRUE(MatchIsCorrect(m, s, &why)) << name << " trial " << k << ": " << why;
       EXPECT_EQ(m.room_pairs.size(), s.graph.rooms.size()) << name;
       EXPECT_GT(m.surface_pairs.size(), s.graph.rooms.size()) << name;

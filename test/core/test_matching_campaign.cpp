@@ -74,9 +74,8 @@ TEST(MatchingCampaign, ThousandRandomTrialsWithoutAWrongUniqueMatch) {
       std::string why;
       if (!testing::MatchIsCorrect(m, s, &why)) {
         ++wrong, ++stats[3];
-        ADD_FAILURE() << "trial " << trial << " (" << buildings[b].first << ", "
-                      << c.rooms.size() << " rooms, S-Graph seed " << c.seed
-                      << "): wrong UNIQUE: " << why;
+        ADD_FAILURE() << "trial " << trial << " (" << buildings[b].first << ", " << c.rooms.size()
+                      << " rooms, S-Graph seed " << c.seed << "): wrong UNIQUE: " << why;
       }
     } else if (m.status == MatchStatus::kAmbiguous) {
       ++ambiguous, ++stats[2];

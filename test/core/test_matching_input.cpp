@@ -56,18 +56,40 @@ TEST(MatchingInput, MalformedSGraphsWarnAndClaimNothing) {
     std::function<void(sgraph::SGraph&)> spoil;
     const char* warning;
   } cases[] = {
-      {"NaN normals", [&](sgraph::SGraph& s) { for (auto& p : s.planes) p.plane.normal.x() = nan; },
+      {"NaN normals",
+       [&](sgraph::SGraph& s) {
+         for (auto& p : s.planes) p.plane.normal.x() = nan;
+       },
        "non-finite"},
-      {"NaN d", [&](sgraph::SGraph& s) { for (auto& p : s.planes) p.plane.d = nan; }, "non-finite"},
-      {"NaN centres", [&](sgraph::SGraph& s) { for (auto& r : s.rooms) r.center.y() = nan; },
+      {"NaN d",
+       [&](sgraph::SGraph& s) {
+         for (auto& p : s.planes) p.plane.d = nan;
+       },
+       "non-finite"},
+      {"NaN centres",
+       [&](sgraph::SGraph& s) {
+         for (auto& r : s.rooms) r.center.y() = nan;
+       },
        "non-finite centre"},
-      {"rooms without planes", [&](sgraph::SGraph& s) { for (auto& r : s.rooms) r.planes.clear(); },
+      {"rooms without planes",
+       [&](sgraph::SGraph& s) {
+         for (auto& r : s.rooms) r.planes.clear();
+       },
        "no planes"},
-      {"unknown planes", [&](sgraph::SGraph& s) { for (auto& r : s.rooms) r.planes = {999999}; },
+      {"unknown planes",
+       [&](sgraph::SGraph& s) {
+         for (auto& r : s.rooms) r.planes = {999999};
+       },
        "does not exist"},
-      {"duplicate room ids", [&](sgraph::SGraph& s) { for (auto& r : s.rooms) r.id = 1; },
+      {"duplicate room ids",
+       [&](sgraph::SGraph& s) {
+         for (auto& r : s.rooms) r.id = 1;
+       },
        "duplicate id"},
-      {"duplicate plane ids", [&](sgraph::SGraph& s) { for (auto& p : s.planes) p.id = 5; },
+      {"duplicate plane ids",
+       [&](sgraph::SGraph& s) {
+         for (auto& p : s.planes) p.id = 5;
+       },
        "duplicate plane id"},
   };
   for (const auto& c : cases) {

@@ -77,11 +77,13 @@ TEST(RigidFit, RecoversYawAndTranslationFromPlanesAndCentres) {
 TEST(RigidFit, NeverFitsAReflection) {
   // Points mirrored (x -> -x): the best proper motion leaves large residuals.
   std::vector<PointCorrespondence> points;
-  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0, 0), Eigen::Vector2d(4, 0), Eigen::Vector2d(0, 2)})
+  for (const Eigen::Vector2d& p :
+       {Eigen::Vector2d(0, 0), Eigen::Vector2d(4, 0), Eigen::Vector2d(0, 2)})
     points.push_back({p, Eigen::Vector2d(-p.x(), p.y()), 0.3});
   const RigidFit fit = FitYawTranslation({}, points);
   double worst = 0.0;
-  for (const auto& p : points) worst = std::max(worst, (fit.pose.Apply(p.s_point) - p.a_point).norm());
+  for (const auto& p : points)
+    worst = std::max(worst, (fit.pose.Apply(p.s_point) - p.a_point).norm());
   EXPECT_GT(worst, 1.0);
   EXPECT_NEAR(fit.pose.ToIsometry().linear().determinant(), 1.0, 1e-12);
 }
@@ -109,8 +111,8 @@ TEST(PairwiseConsistency, RoomPairsKeepDistanceAndTurn) {
   b_turned.yaw += 0.5;
   EXPECT_EQ(RoomPairConsistency(a, b_turned, config), 0.0);
   // A corridor's centre is free along its axis.
-  RoomCorrespondence corridor{{6, 2}, motion.Apply({9, 2}), motion.yaw, true,
-                              motion.Rotate({1, 0})};
+  RoomCorrespondence corridor{
+      {6, 2}, motion.Apply({9, 2}), motion.yaw, true, motion.Rotate({1, 0})};
   EXPECT_GT(RoomPairConsistency(a, corridor, config), 0.9);
 }
 

@@ -39,8 +39,8 @@ TEST(SurfaceMatchCost, HandComputedOffsetAndAngle) {
   const Vector3d xi(0.1, 0.0, 0.0);
   const Vector3d n(1, 0, 0);
   const double ds = 3.0, da = 3.0;
-  std::unique_ptr<ceres::CostFunction> cost(SurfaceMatchCost::Create(
-      n, 0.0, Eigen::Vector3d(1.0, 1.0, 1.0 / 0.05).asDiagonal()));
+  std::unique_ptr<ceres::CostFunction> cost(
+      SurfaceMatchCost::Create(n, 0.0, Eigen::Vector3d(1.0, 1.0, 1.0 / 0.05).asDiagonal()));
   Eigen::VectorXd r = testing::Residual(*cost, {xi.data(), n.data(), &ds, n.data(), &da});
   EXPECT_NEAR(r(2), 0.1 / 0.05, 1e-12);  // 10 cm at σ 5 cm: 2σ
   EXPECT_NEAR(r.head<2>().norm(), 0.0, 1e-12);
@@ -61,8 +61,8 @@ TEST(SurfaceMatchCost, AutodiffMatchesNumericJacobian) {
   const Vector3d xi(1.2, -0.7, 0.4);
   const Vector3d ns = Vector3d(0.2, 0.95, 0.01).normalized(), na = an;
   const double ds = 2.1, da = 3.3;
-  testing::ExpectSameEvaluation(*autodiff, numeric,
-                                {xi.data(), ns.data(), &ds, na.data(), &da}, 1e-6);
+  testing::ExpectSameEvaluation(*autodiff, numeric, {xi.data(), ns.data(), &ds, na.data(), &da},
+                                1e-6);
 }
 
 TEST(RoomMatchCost, HandComputed) {

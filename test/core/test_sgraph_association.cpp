@@ -44,8 +44,8 @@ class AssociationTest : public ::testing::Test {
 
 TEST_F(AssociationTest, SamePlaneWithSmallErrorsMatches) {
   const Vector3d n(-std::cos(0.01), std::sin(0.01), 0.0);  // 0.6°
-  const auto a = AssociatePlane(Segment(n, -2.03, Vector3d(2, 0.5, 0), Vector3d(2, 2, 0)),
-                                mapped_, config_);
+  const auto a =
+      AssociatePlane(Segment(n, -2.03, Vector3d(2, 0.5, 0), Vector3d(2, 2, 0)), mapped_, config_);
   EXPECT_EQ(a.index, 0);
   EXPECT_LT(a.distance2, config_.association_chi2);
 }
@@ -59,9 +59,9 @@ TEST_F(AssociationTest, MahalanobisOfAnOffsetIsItsWhitenedSquare) {
 }
 
 TEST_F(AssociationTest, ParallelPlaneHalfAMetreAwayIsNew) {
-  const auto a = AssociatePlane(
-      Segment(-Vector3d::UnitX(), -2.5, Vector3d(2.5, -1, 0), Vector3d(2.5, 1, 0)), mapped_,
-      config_);
+  const auto a =
+      AssociatePlane(Segment(-Vector3d::UnitX(), -2.5, Vector3d(2.5, -1, 0), Vector3d(2.5, 1, 0)),
+                     mapped_, config_);
   EXPECT_EQ(a.index, -1);
 }
 
@@ -87,8 +87,8 @@ TEST_F(AssociationTest, RotatedWallsMatchTheirOwnPlane) {
   const Vector3d along(-n.y(), n.x(), 0.0);
   const PlaneSegment wall = Segment(n, -4.0, -4.0 * n - along, -4.0 * n + along);
   mapped_.push_back(Mapped(11, wall));
-  const auto a = AssociatePlane(Segment(n, -3.98, -3.98 * n, -3.98 * n + 2 * along), mapped_,
-                                config_);
+  const auto a =
+      AssociatePlane(Segment(n, -3.98, -3.98 * n, -3.98 * n + 2 * along), mapped_, config_);
   EXPECT_EQ(a.index, 2);
 }
 

@@ -20,7 +20,9 @@ using Eigen::Vector2d;
 using Eigen::Vector3d;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
-Eigen::Quaterniond Yaw(double a) { return Eigen::Quaterniond(Eigen::AngleAxisd(a, Vector3d::UnitZ())); }
+Eigen::Quaterniond Yaw(double a) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(a, Vector3d::UnitZ()));
+}
 
 TEST(OdometryCost, ZeroWhenTheRelativePoseMatches) {
   Eigen::Isometry3d z = Eigen::Isometry3d::Identity();
@@ -31,7 +33,9 @@ TEST(OdometryCost, ZeroWhenTheRelativePoseMatches) {
   const Eigen::Quaterniond qi = Yaw(1.0);
   const Vector3d tj = ti + qi * z.translation();
   const Eigen::Quaterniond qj = qi * Yaw(0.3);
-  EXPECT_LT(testing::Residual(*cost, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data()}).norm(), 1e-12);
+  EXPECT_LT(testing::Residual(*cost, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data()})
+                .norm(),
+            1e-12);
 }
 
 TEST(OdometryCost, HandComputedTranslationAndRotationErrors) {
@@ -58,9 +62,10 @@ TEST(OdometryCost, JacobiansMatchNumericDifferentiation) {
   ceres::NumericDiffCostFunction<OdometryCost, ceres::CENTRAL, 6, 3, 4, 3, 4> numeric(
       new OdometryCost(z, s));
   const Vector3d ti(1, 2, 0.5), tj(1.7, 2.3, 0.52);
-  const Eigen::Quaterniond qi = Yaw(0.4), qj = Yaw(0.65) * Eigen::Quaterniond(Eigen::AngleAxisd(0.01, Vector3d::UnitX()));
-  testing::ExpectSameEvaluation(*autodiff, numeric,
-                                {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data()}, 1e-6);
+  const Eigen::Quaterniond qi = Yaw(0.4), qj = Yaw(0.65) * Eigen::Quaterniond(Eigen::AngleAxisd(
+                                                               0.01, Vector3d::UnitX()));
+  testing::ExpectSameEvaluation(
+      *autodiff, numeric, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data()}, 1e-6);
 }
 
 TEST(KeyframePlaneCost, HandComputedOffsetAndRotation) {
@@ -78,7 +83,8 @@ TEST(KeyframePlaneCost, HandComputedOffsetAndRotation) {
   // The keyframe turned by 0.01 rad: the local normal turns by −0.01; |Bᵀ n_k| = sin 0.01.
   d = 3.0;
   const Eigen::Quaterniond turned = Yaw(0.01);
-  const Eigen::VectorXd r = testing::Residual(*cost, {t.data(), turned.coeffs().data(), n.data(), &d});
+  const Eigen::VectorXd r =
+      testing::Residual(*cost, {t.data(), turned.coeffs().data(), n.data(), &d});
   EXPECT_NEAR(r.head<2>().norm(), 100.0 * std::sin(0.01), 1e-9);
   EXPECT_NEAR(r(2), 0.0, 1e-12);
 }
@@ -93,7 +99,8 @@ TEST(KeyframePlaneCost, JacobiansMatchNumericDifferentiation) {
   const Vector3d t(0.5, -1, 0.5), n = Vector3d(0.5, 0.86, 0.02).normalized();
   const Eigen::Quaterniond q = Yaw(0.1);
   const double d = -1.0;
-  testing::ExpectSameEvaluation(*autodiff, numeric, {t.data(), q.coeffs().data(), n.data(), &d}, 1e-6);
+  testing::ExpectSameEvaluation(*autodiff, numeric, {t.data(), q.coeffs().data(), n.data(), &d},
+                                1e-6);
 }
 
 TEST(RoomPlaneCost, HandComputed) {

@@ -45,8 +45,8 @@ TEST(FloorCheck, WallRingIsCoveredFloorIsOpen) {
   for (int r = 30; r <= 50; r += 2)
     for (int a = 0; a < 360; a += 2) {
       floor.push_back(static_cast<int>(points.size()));
-      points.emplace_back(0.1 * r * std::cos(a * M_PI / 180.0), 0.1 * r * std::sin(a * M_PI / 180.0),
-                          0.0f);
+      points.emplace_back(0.1 * r * std::cos(a * M_PI / 180.0),
+                          0.1 * r * std::sin(a * M_PI / 180.0), 0.0f);
     }
   EXPECT_LT(FractionCoveredAbove(points, floor, Vector3d::UnitZ(), 0.08, 0.04, 0.6), 0.1);
 }
@@ -101,8 +101,8 @@ TEST(AssociateScan, ParallelSegmentsOfOneScanTakeDifferentPlanes) {
   EXPECT_EQ(both[0].index, -1);
   EXPECT_EQ(both[1].index, 0);
   // Two coplanar pieces of the wall (a gap at a doorway) both take it.
-  const auto pieces = AssociateScan({Segment(2.0, -2.0, -0.6), Segment(2.01, 0.6, 2.0)}, {wall},
-                                    config);
+  const auto pieces =
+      AssociateScan({Segment(2.0, -2.0, -0.6), Segment(2.01, 0.6, 2.0)}, {wall}, config);
   EXPECT_EQ(pieces[0].index, 0);
   EXPECT_EQ(pieces[1].index, 0);
 }

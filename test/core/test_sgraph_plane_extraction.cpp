@@ -74,7 +74,9 @@ TEST_P(ExtractionTest, FindsEveryWallAndTheFloorFacingTheSensor) {
   const PointList filtered = VoxelFilter(points, config.voxel_size);
   const auto segments = ExtractPlanes(filtered, Vector3d::UnitZ(), Vector3d::Zero(), config);
 
-  auto n = [&](double x, double y) { return Vector3d((rot * Vector2d(x, y)).x(), (rot * Vector2d(x, y)).y(), 0); };
+  auto n = [&](double x, double y) {
+    return Vector3d((rot * Vector2d(x, y)).x(), (rot * Vector2d(x, y)).y(), 0);
+  };
   // Normals into the room (towards the sensor at the origin): n·p = d with d < 0.
   EXPECT_GE(Find(segments, geometry::Plane(n(0, 1), -2.0)), 0) << "south wall";
   EXPECT_GE(Find(segments, geometry::Plane(n(-1, 0), -3.0)), 0) << "east wall";

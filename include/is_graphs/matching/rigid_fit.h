@@ -49,7 +49,7 @@ struct RigidFitWeights {
 struct RigidFit {
   Pose2 pose;
   Eigen::Matrix2d t_information{Eigen::Matrix2d::Zero()};
-  bool translation_determined{false};  // two non-parallel plane directions or a point prior
+  bool translation_determined{false};        // two non-parallel plane directions or a point prior
   bool planes_determine_translation{false};  // the planes alone fix t (not only a prior)
 };
 

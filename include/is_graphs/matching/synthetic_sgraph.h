@@ -17,7 +17,7 @@ namespace matching {
 /// exists): the chosen rooms' surfaces as planes in a map frame M related to B by a planar rigid
 /// motion, with noise, BIM deviations, clutter and rooms the BIM does not have.
 struct SyntheticSGraphConfig {
-  std::vector<int> rooms;  // A-room ids to take; empty: all
+  std::vector<int> rooms;                                      // A-room ids to take; empty: all
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // the truth (yaw + translation)
   bool mirror{false};             // reflect M (x -> -x): the mirror image of the building
   double normal_noise_deg{0.0};   // σ of each plane's normal direction (its ends move <= 10 cm)

@@ -19,7 +19,7 @@ struct ConsistencyReport {
   int room_inliers{0};
   int room_pairs{0};
   double inlier_fraction{0.0};
-  double chi2_per_dof{0.0};  // of the inliers
+  double chi2_per_dof{0.0};           // of the inliers
   std::vector<int> outlier_surfaces;  // S-plane ids
   std::vector<int> outlier_rooms;     // S-room ids
   std::string message;                // why not consistent, or a summary

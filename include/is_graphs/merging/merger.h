@@ -27,7 +27,7 @@ const char* ToString(MergeEvent event);
 
 struct MergeOutput {
   MergeEvent event{MergeEvent::kNone};
-  bool merged{false};  // a pose may be published
+  bool merged{false};                                          // a pose may be published
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // B_x_M (gravity-aligned)
   /// B <- odom for the S-Graph revision merged: B_x_M composed with the merged (BIM-corrected)
   /// pose of the newest keyframe and that keyframe's odometry, so that B <- base_link is

@@ -38,7 +38,7 @@ struct MergerConfig {
   double gate_room{0.6};            // m
   double min_inlier_fraction{0.6};  // of the pairs
   int min_surface_inliers{3};
-  int min_room_inliers{1};  // when a merge starts (later, rooms may turn outlier and go)
+  int min_room_inliers{1};       // when a merge starts (later, rooms may turn outlier and go)
   double max_chi2_per_dof{9.0};  // mean whitened squared residual of the inliers
   // What the robot saw lately must lie on the BIM (CheckRecentEvidence): of the wall planes at
   // least recent_min_length long observed in the newest recent_keyframes keyframes, at least

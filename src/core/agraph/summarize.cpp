@@ -59,8 +59,8 @@ std::string Summarize(const AGraph& graph) {
     for (const Room* r : rooms) {
       out << "    " << std::setw(3) << r->id << "  " << r->name;
       if (!r->long_name.empty()) out << " \"" << r->long_name << "\"";
-      out << "  " << r->area << " m^2, " << r->surfaces.size() << " surfaces, " << r->doorways.size()
-          << " doorways\n";
+      out << "  " << r->area << " m^2, " << r->surfaces.size() << " surfaces, "
+          << r->doorways.size() << " doorways\n";
     }
   }
   out << "warnings: " << graph.warnings.size() << "\n";

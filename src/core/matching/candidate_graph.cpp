@@ -99,7 +99,8 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   const double coverage = total > 0.0 ? seen / total : 0.0;
   out.rms = std::sqrt(sum_sq / matched);
   const double q = out.rms / tol.quality_sigma;
-  out.quality = (static_cast<double>(matched) / n) * (0.5 + 0.5 * coverage) * std::exp(-0.5 * q * q);
+  out.quality =
+      (static_cast<double>(matched) / n) * (0.5 + 0.5 * coverage) * std::exp(-0.5 * q * q);
   out.ok = true;
   return out;
 }
@@ -166,11 +167,12 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
       std::vector<PlaneCorrespondence> planes;
       std::vector<PlaneFeature> matched_s;
       for (const auto& [i, j] : pairs) {
-        planes.push_back({s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d,
-                          a.centre});
+        planes.push_back(
+            {s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d, a.centre});
         matched_s.push_back(s.planes[i]);
       }
-      const bool full_rank = s.kind == RoomKind::kRoom && PlanesSpanTwoDirections(matched_s, kSpanAngle);
+      const bool full_rank =
+          s.kind == RoomKind::kRoom && PlanesSpanTwoDirections(matched_s, kSpanAngle);
       // The centre as a prior: firm for a room, only nominal along a corridor's axis.
       const std::vector<PointCorrespondence> centre{
           {s.centre, a.centre, full_rank ? config.centre_tolerance : 100.0}};

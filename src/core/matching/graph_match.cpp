@@ -5,9 +5,12 @@ namespace matching {
 
 const char* ToString(MatchStatus status) {
   switch (status) {
-    case MatchStatus::kNone: return "NONE";
-    case MatchStatus::kAmbiguous: return "AMBIGUOUS";
-    case MatchStatus::kUnique: return "UNIQUE";
+    case MatchStatus::kNone:
+      return "NONE";
+    case MatchStatus::kAmbiguous:
+      return "AMBIGUOUS";
+    case MatchStatus::kUnique:
+      return "UNIQUE";
   }
   return "?";
 }

@@ -54,7 +54,8 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
     const auto& a = a_rooms_[seed->a_room];
     anchor = s.centre;
     seed_corr = ToCorrespondence(*seed, s, a);
-    PairEvaluation eval = EvaluatePair(s, a, h.pose, seed->full_rank, EvaluationTolerances::From(config_));
+    PairEvaluation eval =
+        EvaluatePair(s, a, h.pose, seed->full_rank, EvaluationTolerances::From(config_));
     if (!eval.ok) return h;
     h.members.push_back({seed->s_room, seed->a_room, seed->full_rank, std::move(eval)});
     a_taken[seed->a_room] = seed->full_rank;
@@ -69,8 +70,8 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
   for (int si : order) {
     if (seed && si == seed->s_room) continue;
     const RoomDescriptor& s = s_rooms[si];
-    const auto tol = EvaluationTolerances::From(
-        config_, config_.lever_arm_slack * (s.centre - anchor).norm());
+    const auto tol =
+        EvaluationTolerances::From(config_, config_.lever_arm_slack * (s.centre - anchor).norm());
     const RoomCandidate* best = nullptr;
     PairEvaluation best_eval;
     for (const RoomCandidate& c : candidates[si]) {
@@ -78,9 +79,11 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
       if (c.full_rank && a_taken[c.a_room]) continue;
       const RoomDescriptor& a = a_rooms_[c.a_room];
       if (storey >= 0 && a.storey != storey) continue;
-      if (seed && RoomPairConsistency(seed_corr, ToCorrespondence(c, s, a), config_) == 0.0) continue;
+      if (seed && RoomPairConsistency(seed_corr, ToCorrespondence(c, s, a), config_) == 0.0)
+        continue;
       PairEvaluation eval = EvaluatePair(s, a, h.pose, c.full_rank, tol);
-      if (eval.ok && (!best || eval.quality > best_eval.quality)) best = &c, best_eval = std::move(eval);
+      if (eval.ok && (!best || eval.quality > best_eval.quality))
+        best = &c, best_eval = std::move(eval);
     }
     if (!best) continue;
     h.members.push_back({si, best->a_room, best->full_rank, std::move(best_eval)});
@@ -96,13 +99,15 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
     if (fit.translation_determined && fit.planes_determine_translation) h.pose = fit.pose;
     std::vector<MemberPair> kept;
     for (auto& m : h.members) {
-      m.evaluation = EvaluatePair(s_rooms[m.s_room], a_rooms_[m.a_room], h.pose, m.full_rank, strict);
+      m.evaluation =
+          EvaluatePair(s_rooms[m.s_room], a_rooms_[m.a_room], h.pose, m.full_rank, strict);
       if (m.evaluation.ok) kept.push_back(std::move(m));
     }
     h.members = std::move(kept);
   }
   // A hypothesis must fix the motion: at least one full-rank pair.
-  if (std::none_of(h.members.begin(), h.members.end(), [](const MemberPair& m) { return m.full_rank; }))
+  if (std::none_of(h.members.begin(), h.members.end(),
+                   [](const MemberPair& m) { return m.full_rank; }))
     h.members.clear();
   h.score = GlobalAffinity(h.members, config_);
   h.rooms = static_cast<int>(h.members.size());
@@ -154,11 +159,14 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   if (last_best_) hypotheses.push_back(Grow(*last_best_, nullptr, s_rooms, candidates));
   for (const RoomCandidate* seed : seeds) {
     if (stats_.seeds >= config_.max_seeds) break;
-    const bool covered = std::any_of(hypotheses.begin(), hypotheses.end(), [&](const Hypothesis& h) {
-      return std::any_of(h.members.begin(), h.members.end(), [&](const MemberPair& m) {
-               return m.s_room == seed->s_room && m.a_room == seed->a_room;
-             }) && SameMotion(h.pose, seed->pose, {s_rooms[seed->s_room].centre}, config_);
-    });
+    const bool covered =
+        std::any_of(hypotheses.begin(), hypotheses.end(), [&](const Hypothesis& h) {
+          return std::any_of(h.members.begin(), h.members.end(),
+                             [&](const MemberPair& m) {
+                               return m.s_room == seed->s_room && m.a_room == seed->a_room;
+                             }) &&
+                 SameMotion(h.pose, seed->pose, {s_rooms[seed->s_room].centre}, config_);
+        });
     if (covered) continue;
     ++stats_.seeds;
     hypotheses.push_back(Grow(seed->pose, seed, s_rooms, candidates));
@@ -191,7 +199,8 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
               [](const MatchPair& x, const MatchPair& y) { return x.s_id < y.s_id; });
     for (const auto& [id, pair] : surfaces) out.surface_pairs.push_back(pair);
     for (int k : decision.competitors)
-      out.alternatives.push_back({hypotheses[k].pose.ToIsometry(), hypotheses[k].score, hypotheses[k].rooms});
+      out.alternatives.push_back(
+          {hypotheses[k].pose.ToIsometry(), hypotheses[k].score, hypotheses[k].rooms});
   }
   stats_.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

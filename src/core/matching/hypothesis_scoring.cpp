@@ -23,8 +23,8 @@ RigidFit FitMembers(const std::vector<MemberPair>& members,
     const RoomDescriptor& s = s_rooms[m.s_room];
     const RoomDescriptor& a = a_rooms[m.a_room];
     for (const auto& [i, j] : m.evaluation.surfaces)
-      planes.push_back({s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d,
-                        a.centre});
+      planes.push_back(
+          {s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d, a.centre});
     if (m.full_rank) points.push_back({s.centre, a.centre, config.centre_tolerance});
   }
   return FitYawTranslation(planes, points);
@@ -73,8 +73,8 @@ Decision Decide(std::vector<Hypothesis>& hypotheses, const std::vector<Eigen::Ve
       decision.competitors.push_back(clusters[k]);
   const bool enough = best.rooms >= config.min_matched_rooms &&
                       best.rooms >= config.min_matched_fraction * s_room_count - 1e-9;
-  decision.status = decision.competitors.empty() && enough ? MatchStatus::kUnique
-                                                           : MatchStatus::kAmbiguous;
+  decision.status =
+      decision.competitors.empty() && enough ? MatchStatus::kUnique : MatchStatus::kAmbiguous;
   return decision;
 }
 

@@ -31,7 +31,8 @@ std::vector<std::string> CheckAGraph(const agraph::AGraph& graph) {
     if (r.surfaces.empty()) out.push_back(name + ": no wall-surfaces");
     for (int sid : r.surfaces) {
       if (sid < 0 || sid >= static_cast<int>(graph.surfaces.size()))
-        out.push_back(name + ": names wall-surface " + std::to_string(sid) + " which does not exist");
+        out.push_back(name + ": names wall-surface " + std::to_string(sid) +
+                      " which does not exist");
     }
   }
   return out;

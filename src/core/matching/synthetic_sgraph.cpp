@@ -50,7 +50,8 @@ Eigen::Vector3d Mirror(const Eigen::Vector3d& p) { return {-p.x(), p.y(), p.z()}
 }  // namespace
 
 bool IsCorridorLike(const agraph::AGraph& building, int room, double min_aspect) {
-  if (min_aspect <= 0.0 || room < 0 || room >= static_cast<int>(building.rooms.size())) return false;
+  if (min_aspect <= 0.0 || room < 0 || room >= static_cast<int>(building.rooms.size()))
+    return false;
   const Rect r = BoundingRect(building, building.rooms[room]);
   return r.width > 0.0 && r.length / r.width >= min_aspect;
 }
@@ -223,7 +224,8 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& b, const SyntheticSGra
 
   // Rooms that are not in the BIM: rectangles near the others.
   Eigen::Vector2d lo(1e18, 1e18), hi(-1e18, -1e18);
-  for (const auto& r : g.rooms) lo = lo.cwiseMin(r.center.head<2>()), hi = hi.cwiseMax(r.center.head<2>());
+  for (const auto& r : g.rooms)
+    lo = lo.cwiseMin(r.center.head<2>()), hi = hi.cwiseMax(r.center.head<2>());
   if (g.rooms.empty()) lo = hi = Eigen::Vector2d::Zero();
   for (int k = 0; k < config.extra_rooms; ++k) {
     const Eigen::Vector2d c(lo.x() - 5.0 + (hi.x() - lo.x() + 10.0) * unit(rng),

@@ -44,11 +44,16 @@ ConsistencyReport CheckConsistency(const MergeSolution& solution, const MergerCo
       << report.room_inliers << "/" << report.room_pairs << " inliers, chi2/dof "
       << report.chi2_per_dof;
   std::string why;
-  if (!solution.usable) why = "the solve failed (" + solution.message + ")";
-  else if (report.surface_inliers < config.min_surface_inliers) why = "too few surface inliers";
-  else if (starting && report.room_inliers < config.min_room_inliers) why = "too few room inliers";
-  else if (report.inlier_fraction < config.min_inlier_fraction) why = "too many outlier pairs";
-  else if (report.chi2_per_dof > config.max_chi2_per_dof) why = "inlier residuals too large";
+  if (!solution.usable)
+    why = "the solve failed (" + solution.message + ")";
+  else if (report.surface_inliers < config.min_surface_inliers)
+    why = "too few surface inliers";
+  else if (starting && report.room_inliers < config.min_room_inliers)
+    why = "too few room inliers";
+  else if (report.inlier_fraction < config.min_inlier_fraction)
+    why = "too many outlier pairs";
+  else if (report.chi2_per_dof > config.max_chi2_per_dof)
+    why = "inlier residuals too large";
   report.consistent = why.empty();
   report.message = why.empty() ? out.str() : why + ": " + out.str();
   return report;
@@ -65,8 +70,7 @@ TransformJump CompareTransforms(const Eigen::Vector3d& a, const Eigen::Vector3d&
 }
 
 bool TransformsAgree(const TransformJump& jump, const MergerConfig& config) {
-  return jump.translation <= config.max_jump_translation &&
-         jump.yaw_deg <= config.max_jump_yaw_deg;
+  return jump.translation <= config.max_jump_translation && jump.yaw_deg <= config.max_jump_yaw_deg;
 }
 
 }  // namespace merging

@@ -5,9 +5,12 @@ namespace merging {
 
 const char* ToString(LocalizationState state) {
   switch (state) {
-    case LocalizationState::kNotLocalized: return "NOT_LOCALIZED";
-    case LocalizationState::kLocalized: return "LOCALIZED";
-    case LocalizationState::kLost: return "LOST";
+    case LocalizationState::kNotLocalized:
+      return "NOT_LOCALIZED";
+    case LocalizationState::kLocalized:
+      return "LOCALIZED";
+    case LocalizationState::kLost:
+      return "LOST";
   }
   return "?";
 }

@@ -122,8 +122,8 @@ MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) 
   out.evidence = CheckRecentEvidence(a_graph_, s_graph, out.solution, config_);
   if (out.consistency.consistent && out.evidence.contradicts) {
     out.consistency.consistent = false;
-    out.consistency.message = "what the robot sees now contradicts the BIM (kidnapped?): " +
-                              out.evidence.message;
+    out.consistency.message =
+        "what the robot sees now contradicts the BIM (kidnapped?): " + out.evidence.message;
   }
   if (!out.consistency.consistent) {
     const bool was_merged = merged_;

@@ -34,8 +34,9 @@ RecentEvidence CheckRecentEvidence(const agraph::AGraph& a_graph, const sgraph::
   if (s_graph.keyframes.empty() || config.recent_keyframes <= 0) return out;
   std::vector<const sgraph::Keyframe*> order;
   for (const auto& k : s_graph.keyframes) order.push_back(&k);
-  std::sort(order.begin(), order.end(),
-            [](const sgraph::Keyframe* a, const sgraph::Keyframe* b) { return a->stamp > b->stamp; });
+  std::sort(order.begin(), order.end(), [](const sgraph::Keyframe* a, const sgraph::Keyframe* b) {
+    return a->stamp > b->stamp;
+  });
   std::map<int, const sgraph::Keyframe*> recent;
   for (size_t i = 0; i < order.size() && static_cast<int>(i) < config.recent_keyframes; ++i)
     recent[order[i]->id] = order[i];
@@ -52,20 +53,22 @@ RecentEvidence CheckRecentEvidence(const agraph::AGraph& a_graph, const sgraph::
     if ((plane.end - plane.start).norm() < config.recent_min_length) continue;
     seen.insert(plane.id);
     const auto merged = solution.keyframes.find(o.keyframe);
-    const Eigen::Isometry3d& map_T_k = merged != solution.keyframes.end() ? merged->second : k->second->pose;
+    const Eigen::Isometry3d& map_T_k =
+        merged != solution.keyframes.end() ? merged->second : k->second->pose;
     const Eigen::Isometry3d bim_T_k = bim_T_map * map_T_k;
     const geometry::Plane in_b = o.local.Transformed(bim_T_k);
     // The middle of the plane's mapped extent, at the keyframe's height, moved into B.
     const Eigen::Vector2d mid_m = 0.5 * (plane.start + plane.end);
-    Eigen::Vector3d middle_b = bim_T_map * Eigen::Vector3d(mid_m.x(), mid_m.y(), map_T_k.translation().z());
+    Eigen::Vector3d middle_b =
+        bim_T_map * Eigen::Vector3d(mid_m.x(), mid_m.y(), map_T_k.translation().z());
     middle_b = in_b.Project(middle_b);
     if (Supported(a_graph, in_b, middle_b, config)) supported.insert(plane.id);
   }
   out.planes = static_cast<int>(seen.size());
   out.supported = static_cast<int>(supported.size());
   std::ostringstream m;
-  m << out.supported << " of the " << out.planes << " walls seen in the last " << config.recent_keyframes
-    << " keyframes lie on the BIM's wall-surfaces";
+  m << out.supported << " of the " << out.planes << " walls seen in the last "
+    << config.recent_keyframes << " keyframes lie on the BIM's wall-surfaces";
   out.message = m.str();
   out.contradicts = out.planes >= config.recent_min_planes &&
                     out.supported < config.recent_min_support * out.planes;

@@ -36,7 +36,8 @@ PointList VoxelFilter(const PointList& points, double voxel_size) {
   for (const auto& p : points) {
     if (!p.allFinite()) continue;
     const auto key = [&](float v) {
-      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) + (1 << 20)) &
+      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) +
+                                        (1 << 20)) &
              0x1FFFFF;
     };
     const std::uint64_t k = (key(p.x()) << 42) | (key(p.y()) << 21) | key(p.z());

@@ -85,9 +85,8 @@ std::vector<Association> AssociateScan(const std::vector<PlaneSegment>& observed
     for (size_t i = 0; i < n && !changed; ++i) {
       for (size_t j = i + 1; j < n && !changed; ++j) {
         if (result[i].index < 0 || result[i].index != result[j].index) continue;
-        if (observed_in_map[i].horizontal ||
-            CoplanarInScan(observed_in_map[i], observed_in_map[j],
-                           config.association_coplanar_tolerance))
+        if (observed_in_map[i].horizontal || CoplanarInScan(observed_in_map[i], observed_in_map[j],
+                                                            config.association_coplanar_tolerance))
           continue;
         const size_t loser = result[i].distance2 <= result[j].distance2 ? j : i;
         excluded[loser].push_back(result[loser].index);

@@ -137,12 +137,10 @@ std::vector<PlaneSegment> ExtractPlanes(const PointList& points, const Eigen::Ve
   if (config.extract_floor) {
     // The floor: below the sensor by more than a body height's margin.
     const double sensor_height = up.dot(sensor_origin);
-    const auto below = remaining([&](size_t i) {
-      return up.dot(points[i].cast<double>()) < sensor_height - 0.3;
-    });
+    const auto below =
+        remaining([&](size_t i) { return up.dot(points[i].cast<double>()) < sensor_height - 0.3; });
     if (below.size() >= static_cast<size_t>(config.min_plane_points)) {
-      const auto inliers =
-          RansacPlane(cloud, below, pcl::SACMODEL_PERPENDICULAR_PLANE, up, config);
+      const auto inliers = RansacPlane(cloud, below, pcl::SACMODEL_PERPENDICULAR_PLANE, up, config);
       // A band of wall returns is not a floor: it has more wall straight above it.
       if (inliers.size() >= static_cast<size_t>(config.min_plane_points) &&
           FractionCoveredAbove(points, inliers, up, config.voxel_size, 0.5 * config.voxel_size,

@@ -31,7 +31,7 @@ std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>
     scatter += q * q.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
-  const Eigen::Vector3d values = eig.eigenvalues();  // ascending
+  const Eigen::Vector3d values = eig.eigenvalues();                           // ascending
   if (!(values(1) > 1e-9 * std::max(values(2), 1e-12))) return std::nullopt;  // collinear
   PlaneFit fit;
   Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
@@ -39,8 +39,7 @@ std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>
     // The scatter of the horizontal projection; the up direction gets the largest eigenvalue.
     const Eigen::Vector3d up = vertical_about->normalized();
     const Eigen::Matrix3d p = Eigen::Matrix3d::Identity() - up * up.transpose();
-    const Eigen::Matrix3d horizontal =
-        p * scatter * p + (values(2) + 1.0) * up * up.transpose();
+    const Eigen::Matrix3d horizontal = p * scatter * p + (values(2) + 1.0) * up * up.transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig_h(horizontal);
     if (!(eig_h.eigenvalues()(1) > 1e-9 * std::max(values(2), 1e-12))) return std::nullopt;
     normal = eig_h.eigenvectors().col(0).normalized();
@@ -57,8 +56,8 @@ std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>
   Eigen::Matrix<double, 4, 3> g = Eigen::Matrix<double, 4, 3>::Zero();
   g.topLeftCorner<3, 2>() = basis;
   g(3, 2) = 1.0;
-  const double scale =
-      std::min(1.0, static_cast<double>(max_effective_points) / n_points) / (point_sigma * point_sigma);
+  const double scale = std::min(1.0, static_cast<double>(max_effective_points) / n_points) /
+                       (point_sigma * point_sigma);
   fit.information = scale * g.transpose() * moments * g;
   fit.covariance = CovarianceFromInformation(fit.plane.normal, fit.information);
   return fit;

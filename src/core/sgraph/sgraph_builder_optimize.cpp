@@ -91,8 +91,7 @@ SGraph SGraphBuilder::Snapshot() const {
     graph.rooms.push_back(room);
   }
   if (floor_.present) graph.floors.push_back(MakeFloor(graph.rooms, height));
-  if (floor_.present && !graph.floors.empty())
-    graph.floors.back().center.head<2>() = floor_.center;
+  if (floor_.present && !graph.floors.empty()) graph.floors.back().center.head<2>() = floor_.center;
   return graph;
 }
 

@@ -90,11 +90,10 @@ int main(int argc, char** argv) {
   int reps = 30;
   for (int i = 1; i + 1 < argc; ++i)
     if (std::strcmp(argv[i], "--reps") == 0) reps = std::max(1, std::atoi(argv[i + 1]));
-  const struct {
-    int cols, rows;
-  } buildings[] = {{5, 2}, {10, 6}, {20, 10}};
-  std::printf("| A-Graph rooms | S-Graph rooms | cold median ms | cold p90 ms | warm median ms | "
-              "candidates | seeds | UNIQUE |\n|---|---|---|---|---|---|---|---|\n");
+  const struct { int cols, rows; } buildings[] = {{5, 2}, {10, 6}, {20, 10}};
+  std::printf(
+      "| A-Graph rooms | S-Graph rooms | cold median ms | cold p90 ms | warm median ms | "
+      "candidates | seeds | UNIQUE |\n|---|---|---|---|---|---|---|---|\n");
   for (const auto& b : buildings) {
     const agraph::AGraph g = GridBuilding(b.cols, b.rows, 1000 + b.cols);
     for (int s_rooms : {3, 10, 20}) {

@@ -28,7 +28,8 @@ namespace merging {
 ///   d_a  A-surface offset (1)
 class SurfaceMatchCost {
  public:
-  SurfaceMatchCost(const Eigen::Vector3d& a_normal, double z, const Eigen::Matrix3d& sqrt_information)
+  SurfaceMatchCost(const Eigen::Vector3d& a_normal, double z,
+                   const Eigen::Matrix3d& sqrt_information)
       : z_(z), sqrt_information_(sqrt_information) {
     Eigen::Index axis = 0;
     a_normal.cwiseAbs().minCoeff(&axis);

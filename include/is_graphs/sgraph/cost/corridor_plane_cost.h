@@ -42,8 +42,8 @@ class CorridorPlaneCost {
                                      const Eigen::Vector2d& axis,
                                      const Eigen::Vector2d& initial_center, double sigma,
                                      double sigma_along) {
-    return new ceres::AutoDiffCostFunction<CorridorPlaneCost, 2, 2, 3, 1>(new CorridorPlaneCost(
-        measured_distance, z, axis, initial_center, sigma, sigma_along));
+    return new ceres::AutoDiffCostFunction<CorridorPlaneCost, 2, 2, 3, 1>(
+        new CorridorPlaneCost(measured_distance, z, axis, initial_center, sigma, sigma_along));
   }
 
  private:

@@ -23,7 +23,8 @@ namespace sgraph {
 ///   q_j  keyframe j orientation (4)
 class OdometryCost {
  public:
-  OdometryCost(const Eigen::Isometry3d& measured, const Eigen::Matrix<double, 6, 6>& sqrt_information)
+  OdometryCost(const Eigen::Isometry3d& measured,
+               const Eigen::Matrix<double, 6, 6>& sqrt_information)
       : t_measured_(measured.translation()),
         q_measured_(Eigen::Quaterniond(measured.linear()).normalized()),
         sqrt_information_(sqrt_information) {}
