@@ -2,7 +2,7 @@
 """The whole pipeline's cost against the size of the building and the length of the run (`make bench`).
 
 Runs replay_pipeline (the core S-Graph, matcher and merger, synchronous, no ROS transport) on
-  - building size: D1 FZK-Haus, D3 office, D6 large, each over the same first SIZE_SECONDS s;
+  - building size: D1 FZK-Haus, D3 office, D7 symmetric, D6 large, each over its first SIZE_SECONDS s;
   - run length:    D6 large over the first 60, 120 and 180 s of bags/D6_large.bag, and the first
                    360 and 540 s of a 540 s D6 bag (bags/D6_large.yaml x3) that this script makes
                    in .ws/bench/bags/ when it is missing (about 1 min, 2.9 GB; BENCH_LONG=0 skips);
@@ -90,7 +90,7 @@ def make_bag_if_missing(scenario, bag):
 def plan(bags_dir, out_dir, long_run):
     """(series, scenario, bag, seconds) in a fixed order; prints what is missing."""
     runs, missing = [], []
-    for name in ["D1_fzk_haus", "D3_office", "D6_large"]:
+    for name in ["D1_fzk_haus", "D3_office", "D7_symmetric", "D6_large"]:
         runs.append(("size", name, os.path.join(bags_dir, name + ".bag"), SIZE_SECONDS))
     for seconds in [60, 120, 180]:
         runs.append(("length", "D6_large", os.path.join(bags_dir, "D6_large.bag"), seconds))
