@@ -59,6 +59,7 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "prior_translation_sigma", c.prior_translation_sigma);
   Read(pnh, "prior_yaw_sigma_deg", c.prior_yaw_sigma_deg);
   Read(pnh, "optimize_sgraph", c.optimize_sgraph);
+  Read(pnh, "window_keyframes", c.window_keyframes);
   Read(pnh, "max_iterations", c.max_iterations);
   Read(pnh, "max_solver_time", c.max_solver_time);
   Read(pnh, "num_threads", c.num_threads);

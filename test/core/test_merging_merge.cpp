@@ -3,6 +3,7 @@
 // contradictions detected; the localization state's bookkeeping; the config's validation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -162,6 +163,48 @@ TEST(Merge, RecoversAKnownTransformInAProjectBuilding) {
   const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
   EXPECT_EQ(out.event, MergeEvent::kLocalized) << out.message;
   ExpectRecovered(out, truth, 1e-3, 0.05);
+}
+
+TEST(Merge, AWindowHoldsTheOlderKeyframesAsPublished) {
+  std::string why;
+  const agraph::AGraph* building =
+      testing::LoadBuildingOnce(testing::ProjectBim("rotated.ifc"), &why);
+  if (!building) GTEST_SKIP() << why;
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(-3.0, 6.0, 75.0 * kDeg, 0.5);
+  const SyntheticCase c = MakeCase(*building, truth, 0.02, 11);
+  const auto& keyframes = c.s.graph.keyframes;
+  ASSERT_GE(keyframes.size(), 5u);
+  const int window = 2;
+  const size_t held = keyframes.size() - window;
+  // The largest move of keyframes [1, held) from their published poses (0 is the gauge).
+  auto moved_most = [&](const MergeOutput& out) {
+    double most = 0.0;
+    for (size_t i = 1; i < held; ++i)
+      most = std::max(
+          most, (out.solution.keyframes.at(keyframes[i].id).matrix() - keyframes[i].pose.matrix())
+                    .norm());
+    return most;
+  };
+  MergerConfig config;
+  config.window_keyframes = window;
+  Merger windowed(config);
+  ASSERT_EQ(windowed.SetAGraph(*building), "");
+  const MergeOutput out = windowed.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(out.event, MergeEvent::kLocalized) << out.message;
+  ExpectRecovered(out, truth, 0.05, 0.5);
+  EXPECT_LT(moved_most(out), 1e-12);  // as published, up to the quaternion normalization
+  // The newest keyframes still move with B_x_M (the noise is corrected there).
+  EXPECT_GT(
+      (out.solution.keyframes.at(keyframes.back().id).matrix() - keyframes.back().pose.matrix())
+          .norm(),
+      1e-6);
+  // Without the window the same keyframes move: the window is what held them.
+  config.window_keyframes = 0;
+  Merger all(config);
+  ASSERT_EQ(all.SetAGraph(*building), "");
+  const MergeOutput free = all.OnMatch(c.match, c.s.graph);
+  ExpectRecovered(free, truth, 0.05, 0.5);
+  EXPECT_GT(moved_most(free), 1e-6);
 }
 
 TEST(Merge, AWrongMatchIsRejected) {
@@ -332,6 +375,9 @@ TEST(MergerConfig, ValidateNamesTheField) {
   c = MergerConfig();
   c.max_iterations = 0;
   EXPECT_EQ(c.Validate().rfind("max_iterations", 0), 0u);
+  c = MergerConfig();
+  c.window_keyframes = -1;
+  EXPECT_EQ(c.Validate().rfind("window_keyframes", 0), 0u) << c.Validate();
 }
 
 }  // namespace

@@ -26,6 +26,9 @@ struct MergerConfig {
   bool optimize_sgraph{true};
   sgraph::BackendConfig sgraph;        // σ and losses of the S-Graph factors (their defaults)
   agraph::AGraphProblemConfig agraph;  // σ of the BIM priors, wall and doorway factors
+  // With optimize_sgraph: only the newest this many keyframes move with B_x_M, the older ones
+  // are held as the S-Graph published them (bounds the merge's cost on long runs; 0: all move).
+  int window_keyframes{50};
 
   int max_iterations{30};
   double max_solver_time{0.5};  // s

@@ -28,6 +28,18 @@ Eigen::Vector2d Rotate2(double yaw, const Eigen::Vector2d& v) {
   return Eigen::Rotation2Dd(yaw) * v;
 }
 
+/// Holds all but the newest `window` keyframes (ids grow with time) as the S-Graph published
+/// them: the merge's cost stays bounded on long runs, and what it moves is what the pose uses.
+void HoldOldKeyframes(int window, sgraph::SGraphFactors& s, ceres::Problem& problem) {
+  if (window <= 0) return;
+  int hold = static_cast<int>(s.poses.size()) - window;
+  for (auto& [id, block] : s.poses) {
+    if (hold-- <= 0) break;
+    for (double* b : {block.t.data(), block.q.coeffs().data()})
+      if (problem.HasParameterBlock(b)) problem.SetParameterBlockConstant(b);
+  }
+}
+
 }  // namespace
 
 Eigen::Isometry3d MergeSolution::BimTMap() const {
@@ -44,7 +56,10 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
   a_problem.AddTo(problem);
   const sgraph::BackendProblem s_problem = sgraph::BackendProblemFromSnapshot(s_graph);
   sgraph::SGraphFactors s(s_problem);
-  if (config.optimize_sgraph) s.AddTo(s_problem, config.sgraph, problem);
+  if (config.optimize_sgraph) {
+    s.AddTo(s_problem, config.sgraph, problem);
+    HoldOldKeyframes(config.window_keyframes, s, problem);
+  }
 
   Eigen::Vector3d xi = initial;
   problem.AddParameterBlock(xi.data(), 3);

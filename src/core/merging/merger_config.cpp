@@ -48,6 +48,9 @@ std::string MergerConfig::Validate() const {
     return "min_room_inliers must be >= 0, got " + std::to_string(min_room_inliers);
   if (max_iterations < 1)
     return "max_iterations must be >= 1, got " + std::to_string(max_iterations);
+  if (window_keyframes < 0)
+    return "window_keyframes must be >= 0 (0: all keyframes), got " +
+           std::to_string(window_keyframes);
   if (num_threads < 1) return "num_threads must be >= 1, got " + std::to_string(num_threads);
   std::string error = sgraph.Validate();
   if (!error.empty()) return "sgraph." + error;
