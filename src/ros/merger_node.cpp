@@ -171,8 +171,9 @@ class MergerNode {
   }
 
   void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (latest_s_ && ros_sgraph::IsNewSession(*latest_s_, *msg)) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const bool new_session = latest_s_ && ros_sgraph::IsNewSession(*latest_s_, *msg);
+    if (new_session) {
       ROS_WARN(
           "merger_node: a new S-Graph (revision %u after %u, %zu keyframes after %zu: "
           "sgraph_node restarted or lost track): merge reset, matching again",
@@ -186,6 +187,8 @@ class MergerNode {
     latest_s_ = msg;
     new_s_ = true;
     wake_.notify_all();
+    lock.unlock();
+    if (new_session) PublishStatus();  // the change at once, not at the next status tick
   }
 
   void OnMatch(const is_graphs::GraphMatch::ConstPtr& msg) {
@@ -202,7 +205,9 @@ class MergerNode {
   void OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
     std::unique_lock<std::mutex> lock(mutex_);
     const ros::Time stamp = msg->header.stamp;
-    if (!last_odom_stamp_.isZero() && stamp + ros::Duration(1.0) < last_odom_stamp_) {
+    const bool went_back =
+        !last_odom_stamp_.isZero() && stamp + ros::Duration(1.0) < last_odom_stamp_;
+    if (went_back) {
       ROS_WARN("merger_node: odometry went back in time by %.1f s (bag restarted?): merge reset",
                (last_odom_stamp_ - stamp).toSec());
       ResetLocked("time went back");
@@ -213,7 +218,11 @@ class MergerNode {
     last_odom_stamp_ = stamp;
     const Eigen::Isometry3d odom_T_base = ros_conversions::FromPose(msg->pose.pose);
     state_.AddOdometry(stamp.toSec(), odom_T_base.translation());
-    if (!localized_) return;
+    if (!localized_) {
+      lock.unlock();
+      if (went_back) PublishStatus();  // the change at once, not at the next status tick
+      return;
+    }
     const Eigen::Isometry3d bim_T_odom = bim_T_odom_;
     const Eigen::Isometry3d bim_T_map = bim_T_map_;
     const Eigen::Matrix3d covariance = covariance_;

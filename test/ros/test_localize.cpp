@@ -16,19 +16,15 @@
 //   ~max_seconds_to_relocalize > 0
 //                          LOCALIZED again within that many seconds after the carry, and at
 //                          the end.
-//
-// Also the real merger_node binary on bad parameters (filtered out of all .test files but one).
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
 #include <is_graphs/LocalizationStatus.h>
 #include <ros/ros.h>
-#include <sys/wait.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -39,7 +35,6 @@
 
 #include "../../src/ros/pose_conversions.h"
 #include "is_graphs/geometry/se3.h"
-#include "node_runner.h"
 
 namespace is_graphs {
 namespace {
@@ -371,19 +366,6 @@ TEST_F(LocalizeTest, BroadcastsBimToMap) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (!c_.expect_localized) GTEST_SKIP() << Where() << "not expected to localize";
   EXPECT_TRUE(tf_ok_) << Where() << tf_error_;
-}
-
-std::pair<int, std::string> RunNode(const std::string& args) {
-  return testing_support::RunNode(IS_GRAPHS_MERGER_NODE, "bad_merger_node", args);
-}
-
-TEST(MergerNodeBadInput, BadParameterIsNamedAndTheNodeExits) {
-  auto [code, out] = RunNode("_room_sigma:=-1.0");
-  EXPECT_EQ(code, 1) << out;
-  EXPECT_NE(out.find("room_sigma"), std::string::npos) << out;
-  std::tie(code, out) = RunNode("_min_inlier_fraction:=many");
-  EXPECT_EQ(code, 1) << out;
-  EXPECT_NE(out.find("min_inlier_fraction"), std::string::npos) << out;
 }
 
 }  // namespace
