@@ -59,18 +59,22 @@ def run(cmd, what):
     return p.stdout
 
 
+def make_bag(yaml, bag, extra=()):
+    """make_bag into BAG.tmp, renamed when complete (an interrupted run leaves no half bag)."""
+    os.makedirs(os.path.dirname(bag), exist_ok=True)
+    run([os.path.join(BIN, "make_bag"), yaml, "-o", bag + ".tmp", "--quiet", *extra], "make_bag")
+    os.replace(bag + ".tmp", bag)
+
+
 def make_long_bag(out_dir):
     bag = os.path.join(out_dir, "bags", "D6_large_x%d.bag" % LONG_SCALE)
     yaml = os.path.join(ROOT, "bags", "D6_large.yaml")
     if os.path.exists(bag) and os.path.getmtime(bag) > os.path.getmtime(yaml):
         return bag
-    os.makedirs(os.path.dirname(bag), exist_ok=True)
     print("bench: making the long run's bag %s (D6_large.yaml, duration x%d; about 1 min, 2.9 GB)"
           % (os.path.relpath(bag, ROOT), LONG_SCALE), flush=True)
     start = time.monotonic()
-    run([os.path.join(BIN, "make_bag"), yaml, "-o", bag + ".tmp", "--quiet",
-         "--duration-scale", str(LONG_SCALE)], "make_bag")
-    os.replace(bag + ".tmp", bag)
+    make_bag(yaml, bag, ["--duration-scale", str(LONG_SCALE)])
     print("bench: made it in %.0f s" % (time.monotonic() - start), flush=True)
     return bag
 
@@ -82,9 +86,7 @@ def make_bag_if_missing(scenario, bag):
     yaml = os.path.join(ROOT, "bags", scenario + ".yaml")
     print("bench: making the missing bag %s from %s (about 15 s)" % (bag, os.path.relpath(yaml, ROOT)),
           flush=True)
-    os.makedirs(os.path.dirname(bag), exist_ok=True)
-    run([os.path.join(BIN, "make_bag"), yaml, "-o", bag + ".tmp", "--quiet"], "make_bag")
-    os.replace(bag + ".tmp", bag)
+    make_bag(yaml, bag)
 
 
 def plan(bags_dir, out_dir, long_run):
