@@ -29,7 +29,9 @@
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/merging/merge_state.h"
 #include "is_graphs/merging/merger.h"
+#include "is_graphs/merging/pose_covariance.h"
 #include "merger_markers.h"
+#include "merger_params.h"
 #include "param_helpers.h"
 #include "pose_conversions.h"
 #include "sgraph_conversions.h"
@@ -39,95 +41,16 @@
 namespace is_graphs {
 namespace {
 
-using ros_params::Read;
+using ros_merger::MergerNodeParams;
 
-struct MergerNodeParams {
-  merging::MergerConfig merger;
-  std::string bim_frame{"bim"}, map_frame{"map"}, odom_frame{"odom"};
-  double match_wait{2.0};   // s: a match for an S-Graph revision not seen yet waits this long
-  double status_rate{1.0};  // Hz
-  ros_markers::MergerMarkerStyle markers;
-};
-
-MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
-  MergerNodeParams p;
-  auto& c = p.merger;
-  Read(pnh, "surface_angle_sigma_deg", c.surface_angle_sigma_deg);
-  Read(pnh, "surface_offset_sigma", c.surface_offset_sigma);
-  Read(pnh, "room_sigma", c.room_sigma);
-  Read(pnh, "match_huber", c.match_huber);
-  Read(pnh, "prior_translation_sigma", c.prior_translation_sigma);
-  Read(pnh, "prior_yaw_sigma_deg", c.prior_yaw_sigma_deg);
-  Read(pnh, "optimize_sgraph", c.optimize_sgraph);
-  Read(pnh, "window_keyframes", c.window_keyframes);
-  Read(pnh, "max_iterations", c.max_iterations);
-  Read(pnh, "max_solver_time", c.max_solver_time);
-  Read(pnh, "num_threads", c.num_threads);
-  Read(pnh, "gate_angle_deg", c.gate_angle_deg);
-  Read(pnh, "gate_offset", c.gate_offset);
-  Read(pnh, "gate_room", c.gate_room);
-  Read(pnh, "min_inlier_fraction", c.min_inlier_fraction);
-  Read(pnh, "min_surface_inliers", c.min_surface_inliers);
-  Read(pnh, "min_room_inliers", c.min_room_inliers);
-  Read(pnh, "max_chi2_per_dof", c.max_chi2_per_dof);
-  Read(pnh, "max_jump_translation", c.max_jump_translation);
-  Read(pnh, "recent_keyframes", c.recent_keyframes);
-  Read(pnh, "recent_min_length", c.recent_min_length);
-  Read(pnh, "recent_min_planes", c.recent_min_planes);
-  Read(pnh, "recent_min_support", c.recent_min_support);
-  Read(pnh, "max_jump_yaw_deg", c.max_jump_yaw_deg);
-  Read(pnh, "pose_sigma_xy", c.pose_sigma_xy);
-  Read(pnh, "pose_sigma_z", c.pose_sigma_z);
-  Read(pnh, "pose_sigma_roll_pitch_deg", c.pose_sigma_roll_pitch_deg);
-  Read(pnh, "pose_sigma_yaw_deg", c.pose_sigma_yaw_deg);
-  Read(pnh, "bim_frame", p.bim_frame);
-  Read(pnh, "map_frame", p.map_frame);
-  Read(pnh, "odom_frame", p.odom_frame);
-  Read(pnh, "match_wait", p.match_wait);
-  Read(pnh, "status_rate", p.status_rate);
-  Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
-  p.markers.frame_id = p.bim_frame;
-  for (const auto& [name, value] :
-       {std::pair<const char*, const std::string*>{"bim_frame", &p.bim_frame},
-        {"map_frame", &p.map_frame},
-        {"odom_frame", &p.odom_frame}})
-    if (value->empty())
-      throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must not be empty");
-  for (const auto& [name, value] :
-       {std::pair<const char*, double>{"match_wait", p.match_wait}, {"status_rate", p.status_rate}})
-    if (!(value > 0.0))
-      throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
-  const std::string error = c.Validate();
-  if (!error.empty())  // Validate names the field first, which is the parameter's name
-    throw ros_params::ParamError("parameter '" + pnh.resolveName(error.substr(0, error.find(' '))) +
-                                 "': " + error);
-  return p;
-}
-
-/// The 6x6 covariance (x, y, z, roll, pitch, yaw) of the robot in B: B_x_M's (x, y, yaw)
-/// covariance moved to the robot's position p_M, plus the configured floors.
+/// The robot's pose covariance in B (merging::RobotPoseCovariance) as a message field.
 boost::array<double, 36> PoseCovariance(const Eigen::Matrix3d& xi_covariance,
                                         const Eigen::Isometry3d& bim_T_map,
                                         const Eigen::Vector3d& p_map,
-                                        const merging::MergerConfig& c) {
-  const Eigen::Vector3d rp = bim_T_map.linear() * p_map;  // R p: the lever arm of a yaw error
-  Eigen::Matrix3d j = Eigen::Matrix3d::Identity();
-  j(0, 2) = -rp.y();
-  j(1, 2) = rp.x();
-  const Eigen::Matrix3d planar = j * xi_covariance * j.transpose();
-  Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Zero();
-  const int index[3] = {0, 1, 5};
-  for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k) cov(index[r], index[k]) = planar(r, k);
-  const double deg = M_PI / 180.0;
-  cov(0, 0) += c.pose_sigma_xy * c.pose_sigma_xy;
-  cov(1, 1) += c.pose_sigma_xy * c.pose_sigma_xy;
-  cov(2, 2) += c.pose_sigma_z * c.pose_sigma_z;
-  cov(3, 3) += std::pow(c.pose_sigma_roll_pitch_deg * deg, 2);
-  cov(4, 4) += std::pow(c.pose_sigma_roll_pitch_deg * deg, 2);
-  cov(5, 5) += std::pow(c.pose_sigma_yaw_deg * deg, 2);
+                                        const merging::MergerConfig& config) {
   boost::array<double, 36> out;
-  ros_conversions::ToArray(cov, out);
+  ros_conversions::ToArray(merging::RobotPoseCovariance(xi_covariance, bim_T_map, p_map, config),
+                           out);
   return out;
 }
 
@@ -347,13 +270,16 @@ class MergerNode {
     const bool had = merger_.HasAGraph();
     const std::string error = merger_.SetAGraph(ros_conversions::FromMsg(*msg));
     a_msg_ = msg;
-    std::lock_guard<std::mutex> lock(mutex_);
     if (had) {
       ROS_WARN("merger_node: a new A-Graph ('%s', sha256 %s): the building changed, merge reset",
                msg->building.c_str(), msg->source_sha256.c_str());
-      localized_ = false;
-      state_.Reset("the building changed; waiting for a unique match");
-      status_dirty_ = true;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        localized_ = false;
+        state_.Reset("the building changed; waiting for a unique match");
+        status_dirty_ = true;
+      }
+      PublishStatus();  // the change at once, not at the next status tick
     }
     if (!error.empty())
       ROS_ERROR("merger_node: unusable A-Graph: %s", error.c_str());
@@ -471,7 +397,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh;
   ros::NodeHandle pnh("~");
   try {
-    const auto params = is_graphs::ReadParams(pnh);
+    const auto params = is_graphs::ros_merger::ReadParams(pnh);
     is_graphs::MergerNode node(nh, params);
     ros::AsyncSpinner spinner(2);  // odometry keeps flowing while graphs are converted
     spinner.start();

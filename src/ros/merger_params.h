@@ -1,0 +1,26 @@
+#pragma once
+// merger_node's parameters: the core's MergerConfig and the node's own, read and validated once.
+#include <ros/node_handle.h>
+
+#include <string>
+
+#include "is_graphs/merging/merger_config.h"
+#include "merger_markers.h"
+
+namespace is_graphs {
+namespace ros_merger {
+
+struct MergerNodeParams {
+  merging::MergerConfig merger;
+  std::string bim_frame{"bim"}, map_frame{"map"}, odom_frame{"odom"};
+  double match_wait{2.0};   // s: a match for an S-Graph revision not seen yet waits this long
+  double status_rate{1.0};  // Hz
+  ros_markers::MergerMarkerStyle markers;
+};
+
+/// The parameters from `pnh` (private), validated; a bad one throws ros_params::ParamError
+/// naming it.
+MergerNodeParams ReadParams(const ros::NodeHandle& pnh);
+
+}  // namespace ros_merger
+}  // namespace is_graphs
