@@ -272,3 +272,32 @@ def test_duplex_surfaces_lie_on_the_extruded_wall_profiles(duplex):
         assert plane_error_to_profile(s, poly) < MM, s
         checked += 1
     assert checked >= 90
+
+
+def test_duplex_level1_units_are_twins_under_a_half_turn(duplex):
+    """Why D2 must stay AMBIGUOUS: on Level 1, unit B is unit A turned 180 deg about one point.
+    Every room centre lands on its twin's, and every wall-surface that bounds a room lands on
+    a surface of the same plane (extents may differ at wall joins). A robot that sees walls and
+    rooms in one unit cannot tell which unit it is in."""
+    g = duplex.graph
+    level = by_name(g, "storeys", "Level 1")["id"]
+    rooms = {r["name"]: r for r in g["rooms"] if r["storey"] == level}
+    centre = (np.array(rooms["A102"]["center"][:2]) + np.array(rooms["B102"]["center"][:2])) / 2
+    assert centre == pytest.approx([4.4, -8.9], abs=0.01)
+
+    def turned(p):
+        return 2 * centre - np.asarray(p[:2], dtype=float)
+
+    for n in ("101", "102", "103", "104", "105"):
+        a, b = rooms["A" + n], rooms["B" + n]
+        assert turned(a["center"]) == pytest.approx(b["center"][:2], abs=0.01), n
+        assert a["area"] == pytest.approx(b["area"], rel=1e-3), n
+    surfaces = [s for s in g["wall_surfaces"] if s["storey"] == level]
+    bounding = [s for s in surfaces if s["rooms"]]
+    assert len(bounding) >= 20
+    for s in bounding:
+        n = -np.asarray(s["normal"][:2])                 # the plane turned: n' = -n
+        mid = turned((np.asarray(s["start"]) + np.asarray(s["end"])) / 2)
+        twins = [t for t in surfaces
+                 if np.dot(t["normal"][:2], n) > 0.999 and abs(np.dot(n, mid) - t["d"]) < 0.01]
+        assert twins, f"surface {s['id']} (rooms {s['rooms']}) has no twin under the half turn"

@@ -15,10 +15,16 @@
 //                          the poses outside [carry, carry + window));
 //   ~max_seconds_to_relocalize > 0
 //                          LOCALIZED again within that many seconds after the carry, and at
-//                          the end.
+//                          the end;
+//   ~max_seconds_to_ambiguous > 0
+//                          a symmetric building, where the walked part has a twin (the
+//                          duplex's two units): graph_match AMBIGUOUS (at least 2 hypotheses)
+//                          within that many seconds of the bag start, never UNIQUE, never
+//                          LOCALIZED, no pose_bim and no tf bim -> map.
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
+#include <is_graphs/GraphMatch.h>
 #include <is_graphs/LocalizationStatus.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
@@ -57,6 +63,7 @@ struct Contract {
   double max_wrong_distance{0.5}, max_wrong_yaw_deg{5.0};
   double kidnap_window{0.0};
   double max_seconds_to_relocalize{0.0};  // 0: relocalizing is not required
+  double max_seconds_to_ambiguous{0.0};   // 0: not a symmetric building
   double max_wait{150.0};                 // wall s to collect, at most
   double bag_end_quiet{4.0};              // wall s without ground truth: the bag is over
 };
@@ -76,6 +83,7 @@ Contract ReadContract() {
   pnh.param("max_wrong_yaw_deg", c.max_wrong_yaw_deg, c.max_wrong_yaw_deg);
   pnh.param("kidnap_window", c.kidnap_window, c.kidnap_window);
   pnh.param("max_seconds_to_relocalize", c.max_seconds_to_relocalize, c.max_seconds_to_relocalize);
+  pnh.param("max_seconds_to_ambiguous", c.max_seconds_to_ambiguous, c.max_seconds_to_ambiguous);
   pnh.param("max_wait", c.max_wait, c.max_wait);
   pnh.param("bag_end_quiet", c.bag_end_quiet, c.bag_end_quiet);
   return c;
@@ -112,6 +120,13 @@ class LocalizeTest : public ::testing::Test {
                 localized_seen_ = true;
                 first_localized_ = *m;
               }
+            }));
+    ros::Subscriber ms = nh.subscribe<is_graphs::GraphMatch>(
+        "graph_match", 100,
+        boost::function<void(const is_graphs::GraphMatch::ConstPtr&)>(
+            [](const is_graphs::GraphMatch::ConstPtr& m) {
+              std::lock_guard<std::mutex> lock(mutex_);
+              matches_.push_back(*m);
             }));
     ros::Subscriber ts = nh.subscribe<geometry_msgs::PoseStamped>(
         "ground_truth/pose", 2000,
@@ -184,6 +199,7 @@ class LocalizeTest : public ::testing::Test {
   static inline std::mutex mutex_;
   static inline std::vector<geometry_msgs::PoseWithCovarianceStamped> poses_;
   static inline std::vector<is_graphs::LocalizationStatus> statuses_;
+  static inline std::vector<is_graphs::GraphMatch> matches_;
   static inline std::map<uint64_t, Eigen::Isometry3d> truth_;
   static inline ros::WallTime last_truth_wall_;
   static inline bool localized_seen_ = false;
@@ -241,8 +257,8 @@ TEST_F(LocalizeTest, LocalizesInTime) {
     std::printf("[ %s ] not localized; last status: %s\n", c_.scenario.c_str(),
                 statuses_.empty() ? "(none)" : statuses_.back().message.c_str());
   if (!c_.expect_localized)
-    GTEST_SKIP() << Where() << "not expected to localize on this bag (yet): only the "
-                 << "no-wrong-pose contract applies";
+    GTEST_SKIP() << Where() << "not expected to localize on this bag: only the no-wrong-pose "
+                 << "contract (and a symmetric building's) applies";
   ASSERT_FALSE(statuses_.empty()) << Where() << "no localization_status";
   ASSERT_TRUE(localized_seen_) << Where() << "not localized within the bag; last status: "
                                << statuses_.back().message;
@@ -262,7 +278,7 @@ TEST_F(LocalizeTest, LocalizesInTime) {
 TEST_F(LocalizeTest, ApeWithinBounds) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (!c_.expect_localized)
-    GTEST_SKIP() << Where() << "not expected to localize on this bag (yet): no APE bound";
+    GTEST_SKIP() << Where() << "not expected to localize on this bag: no APE bound";
   ASSERT_TRUE(localized_seen_) << Where() << "not localized: no APE";
   double sum_sq = 0.0, max_xy = 0.0, max_yaw = 0.0, sum_yaw_sq = 0.0;
   int n = 0;
@@ -360,6 +376,38 @@ TEST_F(LocalizeTest, KidnapIsDetected) {
   EXPECT_EQ(while_lost, 0) << Where() << while_lost
                            << " pose_bim while LOST, the first at t = " << first_bad - bag_start_
                            << " s";
+}
+
+// A symmetric building: the robot cannot know which twin it walks in, so the only right answer
+// is AMBIGUOUS, given in time, and nothing published in the BIM frame.
+TEST_F(LocalizeTest, SymmetricStaysAmbiguous) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (c_.max_seconds_to_ambiguous <= 0.0) GTEST_SKIP() << Where() << "not a symmetric building";
+  ASSERT_FALSE(truth_.empty()) << Where() << "no ground truth: the bag did not play";
+  ASSERT_FALSE(matches_.empty()) << Where() << "no graph_match";
+  const is_graphs::GraphMatch* first_ambiguous = nullptr;
+  int unique = 0;
+  for (const auto& m : matches_) {
+    if (m.status == is_graphs::GraphMatch::UNIQUE) ++unique;
+    if (m.status == is_graphs::GraphMatch::AMBIGUOUS && m.hypotheses >= 2 && !first_ambiguous)
+      first_ambiguous = &m;
+  }
+  std::string first = "never";
+  if (first_ambiguous)
+    first = std::to_string(first_ambiguous->header.stamp.toSec() - bag_start_) +
+            " s into the bag, " + std::to_string(first_ambiguous->hypotheses) + " hypotheses";
+  std::printf("[ %s ] %zu graph_match, %d UNIQUE; first AMBIGUOUS: %s\n", c_.scenario.c_str(),
+              matches_.size(), unique, first.c_str());
+  EXPECT_EQ(unique, 0) << Where() << unique << " UNIQUE matches in a symmetric building";
+  ASSERT_NE(first_ambiguous, nullptr)
+      << Where() << "the matcher never answered AMBIGUOUS with 2 or more hypotheses";
+  const double t = first_ambiguous->header.stamp.toSec() - bag_start_;
+  EXPECT_LE(t, c_.max_seconds_to_ambiguous)
+      << Where() << "first AMBIGUOUS at " << t << " s into the bag, later than the bound "
+      << c_.max_seconds_to_ambiguous << " s";
+  EXPECT_FALSE(localized_seen_) << Where() << "LOCALIZED in a symmetric building";
+  EXPECT_TRUE(poses_.empty()) << Where() << poses_.size() << " pose_bim in a symmetric building";
+  EXPECT_FALSE(tf_ok_) << Where() << "tf bim -> map broadcast in a symmetric building";
 }
 
 TEST_F(LocalizeTest, BroadcastsBimToMap) {
