@@ -119,6 +119,7 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "room_sigma", b.room_sigma);
   Read(pnh, "corridor_along_sigma", b.corridor_along_sigma);
   Read(pnh, "floor_sigma", b.floor_sigma);
+  Read(pnh, "polygon_room_sigma", b.polygon_room_sigma);
   // The configs name the field; the parameter carries the same name under the node.
   const std::string ns = pnh.getNamespace() + "/";
   for (const std::string& e : {f.Validate(), b.Validate()}) {

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <random>
 
 #include "fixtures.h"
@@ -124,6 +126,33 @@ TEST(Merge, RecoversAKnownTransformExactly) {
   const MergeOutput again = merger.OnSGraph(c.s.graph);
   EXPECT_EQ(again.event, MergeEvent::kUpdated) << again.message;
   ExpectRecovered(again, truth, 1e-3, 0.05);
+}
+
+// A polygonal room's centre is the centroid of the part seen (a corridor's T-junction pulls it
+// into the crossing corridor): the S-Graph publishes a looser information on it, and the merge
+// weighs the room-centre match by it. The same 0.3 m error pulls B_x_M far less then.
+TEST(Merge, ALooseRoomCentreBarelyPullsTheTransform) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.5);
+  SyntheticCase c = MakeCase(building, truth, 0.0);
+  ASSERT_FALSE(c.s.graph.rooms.empty());
+  sgraph::Room& room = c.s.graph.rooms.front();
+  room.center.head<2>() += Eigen::Vector2d(0.3, 0.0);
+  auto error = [&](double centre_sigma) {
+    room.information = Eigen::Matrix3d::Identity() / (centre_sigma * centre_sigma);
+    Merger merger{MergerConfig()};
+    EXPECT_EQ(merger.SetAGraph(building), "");
+    const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+    EXPECT_TRUE(out.merged) << out.message;
+    return (out.bim_T_map.translation() - truth.translation()).head<2>().norm();
+  };
+  const double tight = error(0.1), loose = error(1.0);
+  std::printf("B_x_M error: centre sigma 0.1 m %.4f m, 1.0 m %.4f m\n", tight, loose);
+  EXPECT_GT(tight, 0.004);
+  EXPECT_LT(loose, 0.25 * tight);
+  // An information that is not set (zeros, as in a message without it) is the merge's room_sigma.
+  EXPECT_NEAR(error(std::numeric_limits<double>::infinity()), error(MergerConfig().room_sigma),
+              1e-9);
 }
 
 TEST(Merge, RecoversAKnownTransformWithoutOptimizingTheSGraph) {

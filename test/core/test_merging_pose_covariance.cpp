@@ -23,15 +23,14 @@ MergerConfig Floors() {
 
 TEST(RobotPoseCovariance, NoMergeUncertaintyLeavesTheFloors) {
   const MergerConfig c = Floors();
-  const auto cov = RobotPoseCovariance(Eigen::Matrix3d::Zero(),
-                                       geometry::IsometryFromXYYaw(3.0, -2.0, 0.7),
-                                       Eigen::Vector3d(5.0, 1.0, 0.3), c);
+  const auto cov =
+      RobotPoseCovariance(Eigen::Matrix3d::Zero(), geometry::IsometryFromXYYaw(3.0, -2.0, 0.7),
+                          Eigen::Vector3d(5.0, 1.0, 0.3), c);
   Eigen::Matrix<double, 6, 1> floors;
   floors << 0.0004, 0.0004, 0.0025, std::pow(1.0 * kDeg, 2), std::pow(1.0 * kDeg, 2),
       std::pow(0.5 * kDeg, 2);
   EXPECT_TRUE(cov.diagonal().isApprox(floors, 1e-12)) << cov.diagonal().transpose();
-  EXPECT_NEAR((cov - Eigen::Matrix<double, 6, 6>(cov.diagonal().asDiagonal())).norm(), 0.0,
-              1e-15);
+  EXPECT_NEAR((cov - Eigen::Matrix<double, 6, 6>(cov.diagonal().asDiagonal())).norm(), 0.0, 1e-15);
 }
 
 TEST(RobotPoseCovariance, AYawErrorMovesTheRobotByItsLeverArm) {

@@ -95,6 +95,10 @@ TEST_F(BuilderTest, MapsTheRoomAndCorrectsTheDrift) {
   ASSERT_EQ(g.rooms.size(), 1u);
   EXPECT_EQ(g.rooms[0].type, RoomType::kRoom);
   EXPECT_LT((g.rooms[0].center.head<2>() - Vector2d(4, 2.5)).norm(), 0.1);
+  // Its centre is where the mid-lines meet: published with room_sigma, not the looser
+  // polygon_room_sigma of a centroid.
+  const double room_sigma = BackendConfig{}.room_sigma;
+  EXPECT_NEAR(g.rooms[0].information(0, 0), 1.0 / (room_sigma * room_sigma), 1e-9);
   ASSERT_EQ(g.floors.size(), 1u);
   EXPECT_NEAR(g.floors[0].height, 0.0, 0.03);
   // map -> odom undoes the drift at the last keyframe.

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "is_graphs/sgraph/corridor_detection.h"
 #include "is_graphs/sgraph/floor_node.h"
@@ -81,6 +83,32 @@ TEST(RoomDetection, CorridorIsTwoOpposedWalls) {
   EXPECT_NEAR(corridor->center.x(), 0.0, 1e-9);
   EXPECT_NEAR(std::abs(corridor->axis.x()), 1.0, 1e-9);
   EXPECT_NEAR(corridor->distances[0], 1.0, 1e-9);
+}
+
+TEST(RoomDetection, CorridorBetweenOfficeWallsIsNoRoom) {
+  // A 2 m corridor (y 0..2), 40 m long (its ends beyond the fan's range), crossed at x = -2 and
+  // x = 8 by the lines of offices' side walls that stop 0.15 m short of it on both sides. Their
+  // doorway margins bridge the corridor, but no ray sees them where they are: they bound
+  // offices, not this space. A corridor, not a 10 m four-wall room (D3's false rooms).
+  std::vector<Wall2D> walls = PolygonWalls({{-20, 0}, {20, 0}, {20, 2}, {-20, 2}});
+  walls.erase(walls.begin() + 3);
+  walls.erase(walls.begin() + 1);
+  int id = 10;
+  for (const double x : {-2.0, 8.0}) {
+    for (const auto& [y0, y1] : {std::pair<double, double>{-5.0, -0.15}, {2.15, 7.0}}) {
+      Wall2D w;
+      w.id = id++;
+      w.normal = Vector2d(x < 0 ? 1.0 : -1.0, 0.0);  // facing the corridor's middle
+      w.d = w.normal.x() * x;
+      w.start = Vector2d(x, y0);
+      w.end = Vector2d(x, y1);
+      walls.push_back(w);
+    }
+  }
+  const auto found = Detect(walls, Vector2d(3, 1.1));
+  ASSERT_TRUE(found);
+  EXPECT_EQ(found->type, RoomType::kCorridor) << found->walls.size() << " walls";
+  EXPECT_NEAR(found->center.y(), 1.0, 1e-9);
 }
 
 TEST(RoomDetection, LShapedRoomIsAPolygonalRoom) {

@@ -53,10 +53,10 @@ TEST_F(MergerNodeMidRun, TfGapAndANewAGraph) {
   try {
     const ros::Time after = ros::Time::now() + ros::Duration(0.5);
     const Eigen::Isometry3d& map_T_base = all.graph.keyframes.back().pose;
-    ExpectNear(tf2::transformToEigen(
-                   tf_buffer_.lookupTransform("bim", "map", after, ros::Duration(3.0))) *
-                   map_T_base,
-               truth * map_T_base, "tf bim -> map after the tf gap");
+    ExpectNear(
+        tf2::transformToEigen(tf_buffer_.lookupTransform("bim", "map", after, ros::Duration(3.0))) *
+            map_T_base,
+        truth * map_T_base, "tf bim -> map after the tf gap");
   } catch (const tf2::TransformException& e) {
     ADD_FAILURE() << "no tf bim -> map after the tf gap: " << e.what();
   }

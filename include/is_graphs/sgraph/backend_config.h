@@ -26,6 +26,11 @@ struct BackendConfig {
   double room_sigma{0.1};
   double corridor_along_sigma{2.0};
   double floor_sigma{0.5};
+  // How well a room's published centre stands for the room's true centre (the information on it
+  // in s_graph, which the merge reads): a four-wall room's centre is where its mid-lines meet
+  // (room_sigma); a polygonal room's is the centroid of the part seen, pulled towards a doorway
+  // or a crossing corridor that opens the view.
+  double polygon_room_sigma{1.0};
 
   /// Empty when valid, else what is wrong (naming the field).
   std::string Validate() const;

@@ -37,6 +37,7 @@ struct RayFan {
   std::vector<Eigen::Vector2d> directions;
   std::vector<int> hit;  // index into the walls, −1: nothing within room_max_range
   std::vector<double> range;
+  std::vector<char> on_extent;  // 1: the hit lies on the wall's seen extent (not a slack/margin)
 };
 
 RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
@@ -46,7 +47,9 @@ RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& positio
 std::vector<int> CountHits(const RayFan& fan, size_t num_walls);
 
 /// A closed room around `position`: (almost) every ray hits a wall that faces it and covers a
-/// noticeable sector (stray hits through doorways do not count). Two opposed pairs of walls
+/// noticeable sector (stray hits through doorways do not count), and that is seen bounding this
+/// space: a wall hit only on its corner slack or doorway margins (an office's side wall whose
+/// margin crosses a corridor) closes nothing. Two opposed pairs of walls
 /// make the paper's four-wall room, centred where the pairs' mid-lines cross; three or more
 /// walls in another arrangement (L-shaped, trapezoid) a polygonal room, centred on the area
 /// centroid of the visibility polygon. nullopt when not closed or out of the size limits.

@@ -51,7 +51,9 @@ struct Room {
   Eigen::Vector3d center{Eigen::Vector3d::Zero()};
   std::vector<int> planes;     // plane ids
   std::vector<int> keyframes;  // keyframe ids taken inside it
-  Eigen::Matrix3d information{Eigen::Matrix3d::Identity()};
+  // On the centre as a stand-in for the room's true centre (0.1 m unless set; a polygonal room's
+  // is looser, BackendConfig::polygon_room_sigma).
+  Eigen::Matrix3d information{Eigen::Matrix3d::Identity() * 100.0};
 };
 
 struct Floor {

@@ -5,6 +5,7 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -26,6 +27,17 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 Eigen::Vector2d Rotate2(double yaw, const Eigen::Vector2d& v) {
   return Eigen::Rotation2Dd(yaw) * v;
+}
+
+// σ of a room-centre match: the merge's own room_sigma, or looser where the S-Graph says its
+// centre is (a polygonal room: the centroid of the part seen). The largest σ of the x-y block;
+// an information that is not positive definite (not set) leaves room_sigma.
+double RoomCentreSigma(const sgraph::Room& room, const MergerConfig& config) {
+  const Eigen::Matrix2d info = room.information.topLeftCorner<2, 2>();
+  if (!info.allFinite()) return config.room_sigma;
+  const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(info).eigenvalues()(0);
+  if (!(smallest > 0.0)) return config.room_sigma;
+  return std::max(config.room_sigma, 1.0 / std::sqrt(smallest));
 }
 
 /// Holds all but the newest `window` keyframes (ids grow with time) as the S-Graph published
@@ -103,9 +115,10 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
     const auto& room = *std::find_if(s_graph.rooms.begin(), s_graph.rooms.end(),
                                      [&](const sgraph::Room& r) { return r.id == s_id; });
     const Eigen::Vector2d across = sgraph::CorridorAcross(s_graph, room);
+    const double sigma = RoomCentreSigma(room, config);
     ceres::CostFunction* cost = room.type == sgraph::RoomType::kCorridor && across.norm() > 0.5
-                                    ? CorridorMatchCost::Create(across, config.room_sigma)
-                                    : RoomMatchCost::Create(config.room_sigma);
+                                    ? CorridorMatchCost::Create(across, sigma)
+                                    : RoomMatchCost::Create(sigma);
     problem.AddResidualBlock(cost, new ceres::HuberLoss(config.match_huber), xi.data(),
                              c->second.data(), a_problem.RoomCentre(a_id));
   }
@@ -186,7 +199,7 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
     r.a_id = a_id;
     r.corridor = room.type == sgraph::RoomType::kCorridor && across.norm() > 0.5;
     r.distance = r.corridor ? std::abs(Rotate2(xi.z(), across).dot(e)) : e.norm();
-    r.chi2 = std::pow(r.distance / config.room_sigma, 2);
+    r.chi2 = std::pow(r.distance / RoomCentreSigma(room, config), 2);
     r.dof = r.corridor ? 1 : 2;
     out.rooms.push_back(r);
   }

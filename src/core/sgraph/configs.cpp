@@ -102,6 +102,7 @@ std::string BackendConfig::Validate() const {
   c.Positive("room_sigma", room_sigma);
   c.Positive("corridor_along_sigma", corridor_along_sigma);
   c.Positive("floor_sigma", floor_sigma);
+  c.Positive("polygon_room_sigma", polygon_room_sigma);
   return c.error();
 }
 

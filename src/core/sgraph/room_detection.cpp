@@ -84,6 +84,7 @@ RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& positio
   fan.directions.resize(n);
   fan.hit.assign(n, -1);
   fan.range.assign(n, std::numeric_limits<double>::infinity());
+  fan.on_extent.assign(n, 0);
   for (int k = 0; k < n; ++k) {
     const double a = 2.0 * M_PI * k / n;
     fan.directions[k] = Eigen::Vector2d(std::cos(a), std::sin(a));
@@ -110,6 +111,7 @@ RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& positio
       if (seen && t < fan.range[k]) {
         fan.range[k] = t;
         fan.hit[k] = static_cast<int>(w);
+        fan.on_extent[k] = s >= lo && s <= hi;
       } else if (!seen && s >= lo - config.room_gap_margin && s <= hi + config.room_gap_margin &&
                  t < bridge_range[k]) {
         bridge_range[k] = t;
@@ -137,19 +139,24 @@ std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
   if (n == 0) return std::nullopt;
   const std::vector<int> count = CountHits(fan, walls.size());
   const int significant = std::max(3, n / 50);
+  std::vector<int> seen(walls.size(), 0);  // hits on the seen extent itself
+  for (int k = 0; k < n; ++k)
+    if (fan.hit[k] >= 0 && k < static_cast<int>(fan.on_extent.size()) && fan.on_extent[k])
+      ++seen[fan.hit[k]];
+  auto bounds = [&](int w) { return count[w] >= significant && seen[w] >= significant; };
   int gaps = 0;
   for (int h : fan.hit)
-    if (h < 0 || count[h] < significant) ++gaps;
+    if (h < 0 || !bounds(h)) ++gaps;
   if (gaps > n / 20) return std::nullopt;  // open: some direction escapes
   RoomCandidate room;
   std::vector<int> members;
   for (size_t w = 0; w < walls.size(); ++w)
-    if (count[w] >= significant) members.push_back(static_cast<int>(w));
+    if (bounds(static_cast<int>(w))) members.push_back(static_cast<int>(w));
   if (members.size() < 3) return std::nullopt;
   // The visibility polygon (hits of the counted rays) gives area and centroid.
   std::vector<Eigen::Vector2d> polygon;
   for (int k = 0; k < n; ++k)
-    if (fan.hit[k] >= 0 && count[fan.hit[k]] >= significant)
+    if (fan.hit[k] >= 0 && bounds(fan.hit[k]))
       polygon.push_back(position + fan.range[k] * fan.directions[k]);
   double area = 0.0;
   room.center = PolygonCentroid(polygon, &area);

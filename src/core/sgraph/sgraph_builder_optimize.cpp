@@ -87,7 +87,9 @@ SGraph SGraphBuilder::Snapshot() const {
     room.center = Eigen::Vector3d(r.center.x(), r.center.y(), height);
     room.planes = r.planes;
     room.keyframes = room_keyframes_[i];
-    room.information = Eigen::Matrix3d::Identity() / (backend_.room_sigma * backend_.room_sigma);
+    const double sigma = r.type == RoomType::kRoom && !r.rectangular ? backend_.polygon_room_sigma
+                                                                     : backend_.room_sigma;
+    room.information = Eigen::Matrix3d::Identity() / (sigma * sigma);
     graph.rooms.push_back(room);
   }
   if (floor_.present) graph.floors.push_back(MakeFloor(graph.rooms, height));
