@@ -1,6 +1,7 @@
 // sgraph_node: builds the Situational Graph online from `velodyne_points` and `odom` (+ tf
 // base_link <- sensor) and publishes `s_graph`, tf map -> odom, `s_graph/markers` and
-// `s_graph/map_cloud`. Thin: the work is in is_graphs_core (sgraph::SGraphBuilder). Scans are
+// `s_graph/map_cloud`. Thin: the work is in is_graphs_core (sgraph::SGraphBuilder). A cloud is
+// held until odometry covers its sweep (sgraph::ScanOdometrySync, at most odom_wait) and then
 // processed in the callback; the optimization runs on a worker thread and never blocks them.
 #include <geometry_msgs/TransformStamped.h>
 #include <is_graphs/SGraph.h>
@@ -16,8 +17,10 @@
 #include <condition_variable>
 #include <cstdlib>
 #include <thread>
+#include <utility>
 
 #include "cloud_conversions.h"
+#include "is_graphs/sgraph/scan_odometry_sync.h"
 #include "is_graphs/sgraph/sgraph_builder.h"
 #include "param_helpers.h"
 #include "pose_conversions.h"
@@ -67,6 +70,7 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "keyframe_angle_deg", f.keyframe_angle_deg);
   Read(pnh, "max_odom_gap", f.max_odom_gap);
   Read(pnh, "max_odom_extrapolation", f.max_odom_extrapolation);
+  Read(pnh, "odom_wait", f.odom_wait);
   Read(pnh, "time_reset_threshold", f.time_reset_threshold);
   Read(pnh, "min_range", f.min_range);
   Read(pnh, "max_range", f.max_range);
@@ -137,6 +141,7 @@ class SGraphNode {
   SGraphNode(ros::NodeHandle& nh, const SGraphNodeParams& params)
       : params_(params),
         builder_(params.frontend, params.backend),
+        sync_(params.frontend.odom_wait),
         tf_listener_(tf_buffer_),
         tf_lookup_(tf_buffer_) {
     graph_pub_ = nh.advertise<is_graphs::SGraph>("s_graph", 2, /*latch=*/true);
@@ -161,10 +166,15 @@ class SGraphNode {
     const auto r =
         builder_.AddOdometry(msg->header.stamp.toSec(), ros_conversions::FromPose(msg->pose.pose));
     if (!r.warning.empty()) ROS_WARN_THROTTLE(2.0, "sgraph_node: %s", r.warning.c_str());
-    if (r.reset) PublishAfterReset();
+    if (r.reset) {
+      sync_.Clear();  // clouds of the old run
+      PublishAfterReset();
+    }
     last_odom_stamp_ = msg->header.stamp;
+    ProcessReadyClouds();
   }
 
+  // A cloud is held (sync_) until odometry covers its sweep, then processed.
   void OnCloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
     auto scan = ros_conversions::FromVelodyneMsg(*msg);
     if (!scan.ok()) {
@@ -180,7 +190,23 @@ class SGraphNode {
                         base_T_sensor.error().c_str());
       return;
     }
-    const auto r = builder_.AddScan(scan.value(), base_T_sensor.value());
+    sync_.Push(std::move(scan.value()), base_T_sensor.value(), ros::WallTime::now().toSec());
+    ProcessReadyClouds();
+  }
+
+  void ProcessReadyClouds() {
+    for (auto& ready : sync_.Release(builder_.last_odometry_stamp(), ros::WallTime::now().toSec()))
+      ProcessCloud(ready);
+  }
+
+  void ProcessCloud(const sgraph::PendingScan& cloud) {
+    if (cloud.waited_out)
+      ROS_WARN_THROTTLE(
+          2.0,
+          "sgraph_node: no odometry up to the end of the cloud's sweep (%.3f s) "
+          "after odom_wait %.2f s: processed without it (the pose held over the rest)",
+          sgraph::LastFiring(cloud.scan), params_.frontend.odom_wait);
+    const auto r = builder_.AddScan(cloud.scan, cloud.base_T_sensor);
     if (r.restarted)
       ROS_WARN("sgraph_node: %s", r.warning.c_str());  // never throttled away
     else if (!r.warning.empty())
@@ -252,6 +278,7 @@ class SGraphNode {
   }
 
   void OnTfTimer(const ros::TimerEvent&) {
+    ProcessReadyClouds();  // clouds whose odometry never came, once they waited odom_wait
     if (builder_.num_keyframes() == 0 || last_odom_stamp_.isZero()) return;
     BroadcastMapToOdom(last_odom_stamp_);
   }
@@ -269,6 +296,7 @@ class SGraphNode {
 
   SGraphNodeParams params_;
   sgraph::SGraphBuilder builder_;
+  sgraph::ScanOdometrySync sync_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   ros_tf::TfLookup tf_lookup_;

@@ -60,10 +60,20 @@ std::vector<PlaneError> EvaluatePlanes(const SGraph& graph, const agraph::AGraph
 /// by ground truth). An S-Graph room or corridor is correct when its centre (in bim) lies in a
 /// walked room that no earlier S-Graph room took; false otherwise (outside the walked rooms, or
 /// a second S-Graph room for one BIM room).
+/// One S-Graph room against the building: the A-Graph room its centre lies in (-1: none) and
+/// whether it counts as found, a duplicate (a second S-room in that A-room) or outside.
+struct RoomVerdict {
+  int room{0};     // S-Graph room id
+  int a_room{-1};  // index into AGraph::rooms
+  Eigen::Vector2d center_bim{Eigen::Vector2d::Zero()};
+  enum class Kind { kFound, kDuplicate, kOutside } kind{Kind::kFound};
+};
+
 struct RoomEvaluation {
-  int walked{0};       // A-Graph rooms with ≥ 2 keyframes inside
-  int found{0};        // of those, rooms with an S-Graph room centred inside
-  int detected{0};     // S-Graph rooms and corridors
+  std::vector<RoomVerdict> verdicts;  // one per S-Graph room, in the graph's order
+  int walked{0};                      // A-Graph rooms with ≥ 2 keyframes inside
+  int found{0};                       // of those, rooms with an S-Graph room centred inside
+  int detected{0};                    // S-Graph rooms and corridors
   int false_rooms{0};  // S-Graph rooms centred outside the walked rooms, plus duplicates
   int duplicates{0};   // of those, second (third...) S-Graph rooms in one BIM room
 };

@@ -17,6 +17,10 @@ struct FrontendConfig {
   double max_odom_gap{0.5};
   double max_odom_extrapolation{0.15};
   double time_reset_threshold{1.0};
+  // The node holds a cloud until odometry reaches its last firing, this long at most (its own
+  // clock, s; 0: never waits): a cloud that arrives before the odometry of its own sweep would
+  // be deskewed with the pose held over the sweep's end (ScanOdometrySync).
+  double odom_wait{0.3};
 
   // Track loss (a kidnapped robot, an odometry jump): once the map holds track_loss_min_keyframes
   // keyframes, a keyframe that sees at least track_loss_min_walls wall segments of which at

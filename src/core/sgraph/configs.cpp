@@ -50,6 +50,7 @@ std::string FrontendConfig::Validate() const {
   c.Positive("max_odom_gap", max_odom_gap);
   c.NonNegative("max_odom_extrapolation", max_odom_extrapolation);
   c.Positive("time_reset_threshold", time_reset_threshold);
+  c.Range("odom_wait", odom_wait, 0.0, 10.0);
   c.Range("track_loss_min_keyframes", track_loss_min_keyframes, 1, 1e6);
   c.Range("track_loss_min_walls", track_loss_min_walls, 1, 1000);
   c.Range("track_loss_new_share", track_loss_new_share, 0.5, 1.0);

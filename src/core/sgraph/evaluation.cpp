@@ -161,13 +161,20 @@ RoomEvaluation EvaluateRooms(const SGraph& graph, const agraph::AGraph& building
   std::map<int, int> found;  // A-Graph room -> S-Graph rooms inside it
   for (const auto& room : graph.rooms) {
     ++e.detected;
-    const int at = RoomContaining(building, (bim_T_map * room.center).head<2>());
+    RoomVerdict v;
+    v.room = room.id;
+    v.center_bim = (bim_T_map * room.center).head<2>();
+    const int at = RoomContaining(building, v.center_bim);
+    v.a_room = at;
     if (at < 0 || !walked.count(at)) {
       ++e.false_rooms;
+      v.kind = RoomVerdict::Kind::kOutside;
     } else if (found[at]++ > 0) {
       ++e.false_rooms;
       ++e.duplicates;
+      v.kind = RoomVerdict::Kind::kDuplicate;
     }
+    e.verdicts.push_back(v);
   }
   e.found = static_cast<int>(found.size());
   return e;

@@ -119,6 +119,11 @@ int SGraphBuilder::num_keyframes() const {
   return static_cast<int>(keyframes_.size());
 }
 
+double SGraphBuilder::last_odometry_stamp() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return last_odom_stamp_;
+}
+
 int SGraphBuilder::pending_keyframes() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return static_cast<int>(keyframes_.size()) - optimized_keyframes_;

@@ -204,5 +204,18 @@ int main(int argc, char** argv) {
   std::printf(
       "rooms: walked through %d, found %d, detected %d, false %d (of which duplicates %d)\n",
       rooms.walked, rooms.found, rooms.detected, rooms.false_rooms, rooms.duplicates);
+  for (const auto& v : rooms.verdicts) {  // each S-room: where it lies, what it counts as
+    const auto it = std::find_if(graph.rooms.begin(), graph.rooms.end(),
+                                 [&](const sgraph::Room& r) { return r.id == v.room; });
+    std::string planes;
+    for (int id : it->planes) planes += (planes.empty() ? "" : ",") + std::to_string(id);
+    const char* kind = v.kind == sgraph::RoomVerdict::Kind::kFound       ? "found"
+                       : v.kind == sgraph::RoomVerdict::Kind::kDuplicate ? "DUPLICATE"
+                                                                         : "OUTSIDE";
+    std::printf("  room %d (%s, %zu keyframes, planes %s): centre (%.2f, %.2f) in '%s': %s\n",
+                v.room, it->type == sgraph::RoomType::kCorridor ? "corridor" : "room",
+                it->keyframes.size(), planes.c_str(), v.center_bim.x(), v.center_bim.y(),
+                v.a_room >= 0 ? building.rooms[v.a_room].name.c_str() : "-", kind);
+  }
   return 0;
 }
