@@ -111,6 +111,61 @@ TEST(RoomDetection, CorridorBetweenOfficeWallsIsNoRoom) {
   EXPECT_NEAR(found->center.y(), 1.0, 1e-9);
 }
 
+Wall2D VerticalWall(int id, double x, double facing, double y0, double y1) {
+  Wall2D w;
+  w.id = id;
+  w.normal = Vector2d(facing, 0.0);
+  w.d = facing * x;
+  w.start = Vector2d(x, y0);
+  w.end = Vector2d(x, y1);
+  return w;
+}
+
+TEST(RoomDetection, OneCorridorClosedAtTwoPlacesIsOneSpace) {
+  // D6: a corridor (x 0..20, y 0..2; walls 0 south, 1 east end, 2 north with a doorway in it,
+  // 3 west end) and, through the doorway, a link corridor going north (walls 10 at x = 8 and
+  // 11 at x = 10, from y = 2.2). Seen from its west part the corridor is closed by wall 11's
+  // doorway margin; seen from further on, by its own east end. One space, not two rooms.
+  std::vector<Wall2D> walls = PolygonWalls({{0, 0}, {20, 0}, {20, 2}, {0, 2}});
+  walls.push_back(VerticalWall(10, 8.0, 1.0, 2.2, 7.0));
+  walls.push_back(VerticalWall(11, 10.0, -1.0, 2.2, 7.0));
+  EXPECT_TRUE(SameSpace(walls, {3, 0, 2, 11}, Vector2d(5, 1), {3, 0, 2, 1}, Vector2d(10, 1)));
+  EXPECT_TRUE(SameSpace(walls, {3, 0, 2, 1}, Vector2d(10, 1), {3, 0, 2, 11}, Vector2d(5, 1)));
+  // Sharing only one side (0) and an end wall: no opposed pair, nothing to say they are one.
+  EXPECT_FALSE(SameSpace(walls, {3, 0, 11}, Vector2d(5, 1), {3, 0, 1}, Vector2d(10, 1)));
+  // A centre outside the shared pair (1 m beyond the north wall, in the link corridor).
+  EXPECT_FALSE(SameSpace(walls, {3, 0, 2, 11}, Vector2d(5, 1), {0, 2, 10, 11}, Vector2d(9, 3)));
+}
+
+TEST(RoomDetection, TwoOfficesAlongOneCorridorAreTwoSpaces) {
+  // Offices A (x 0..4) and B (x 4.12..8) between a corridor-side wall (y = 2.2) and the façade
+  // (y = 6), each one plane across both; a 12 cm partition between them. They share an opposed
+  // pair, but the partition lies across the segment joining their centres.
+  std::vector<Wall2D> walls;
+  Wall2D corridor_side;
+  corridor_side.id = 0;
+  corridor_side.normal = Vector2d(0, 1);
+  corridor_side.d = 2.2;
+  corridor_side.start = Vector2d(0, 2.2);
+  corridor_side.end = Vector2d(8, 2.2);
+  Wall2D facade = corridor_side;
+  facade.id = 1;
+  facade.normal = Vector2d(0, -1);
+  facade.d = -6.0;
+  facade.start = Vector2d(0, 6);
+  facade.end = Vector2d(8, 6);
+  walls = {corridor_side,
+           facade,
+           VerticalWall(2, 0.0, 1.0, 2.2, 6.0),
+           VerticalWall(3, 4.0, -1.0, 2.2, 6.0),
+           VerticalWall(4, 4.12, 1.0, 2.2, 6.0),
+           VerticalWall(5, 8.0, -1.0, 2.2, 6.0)};
+  EXPECT_FALSE(SameSpace(walls, {0, 1, 2, 3}, Vector2d(2, 4.1), {0, 1, 4, 5}, Vector2d(6.06, 4.1)));
+  // Without the partition mapped they would be one (what the rule rests on).
+  walls.erase(walls.begin() + 3, walls.begin() + 5);
+  EXPECT_TRUE(SameSpace(walls, {0, 1, 2}, Vector2d(2, 4.1), {0, 1, 5}, Vector2d(6.06, 4.1)));
+}
+
 TEST(RoomDetection, LShapedRoomIsAPolygonalRoom) {
   const std::vector<Vector2d> corners = {{0, 0}, {6, 0}, {6, 3}, {3, 3}, {3, 6}, {0, 6}};
   const auto room = Detect(PolygonWalls(corners), Vector2d(1.5, 1.5));

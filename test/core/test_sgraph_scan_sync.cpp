@@ -72,7 +72,8 @@ TEST(ScanOdometrySync, OrderIsKept) {
 
 TEST(ScanOdometrySync, AFullQueueReleasesItsOldestAndZeroWaitReleasesAtOnce) {
   ScanOdometrySync sync(10.0, /*max_pending=*/2);
-  for (int i = 0; i < 3; ++i) sync.Push(ScanAt(10.0 + 0.1 * i, 0.1), Eigen::Isometry3d::Identity(), 0.0);
+  for (int i = 0; i < 3; ++i)
+    sync.Push(ScanAt(10.0 + 0.1 * i, 0.1), Eigen::Isometry3d::Identity(), 0.0);
   const auto out = sync.Release(0.0, 0.0);
   ASSERT_EQ(out.size(), 1u);
   EXPECT_TRUE(out[0].waited_out);
@@ -91,13 +92,13 @@ TEST(ScanOdometrySync, AFullQueueReleasesItsOldestAndZeroWaitReleasesAtOnce) {
 // (seconds after the scan's first firing) before the scan was added.
 double WorstWallAngleDeg(double odom_until, bool through_sync) {
   std::mt19937 rng(11);
-  const PointList world =
-      testing::PolygonRoom({{0, 0}, {8, 0}, {8, 5}, {0, 5}}, 0.05, 0.005, rng);
+  const PointList world = testing::PolygonRoom({{0, 0}, {8, 0}, {8, 5}, {0, 5}}, 0.05, 0.005, rng);
   constexpr double kRate = 40.0 * M_PI / 180.0, kStamp = 100.0, kSweep = 0.1;
   const auto pose = [&](double t) {
     Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
     p.translation() = Eigen::Vector3d(3.0, 2.5, 0.5);
-    p.linear() = Eigen::AngleAxisd(kRate * (t - kStamp), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    p.linear() =
+        Eigen::AngleAxisd(kRate * (t - kStamp), Eigen::Vector3d::UnitZ()).toRotationMatrix();
     return p;
   };
   Scan scan;
@@ -111,7 +112,8 @@ double WorstWallAngleDeg(double odom_until, bool through_sync) {
     const Eigen::Vector3d q = pose(kStamp + tau).inverse() * w.cast<double>();
     if (std::abs(q.z()) > 0.4 * q.head<2>().norm()) continue;
     ScanPoint p;
-    p.x = static_cast<float>(q.x()), p.y = static_cast<float>(q.y()), p.z = static_cast<float>(q.z());
+    p.x = static_cast<float>(q.x()), p.y = static_cast<float>(q.y()),
+    p.z = static_cast<float>(q.z());
     p.time = static_cast<float>(tau);
     scan.points.push_back(p);
   }
@@ -123,7 +125,8 @@ double WorstWallAngleDeg(double odom_until, bool through_sync) {
   for (int i = 0; i <= last; ++i) {
     builder.AddOdometry(odom_at(i), pose(odom_at(i)));
     if (i == first && through_sync) sync.Push(scan, Eigen::Isometry3d::Identity(), 0.0);
-    for (auto& ready : sync.Release(odom_at(i), 0.0)) builder.AddScan(ready.scan, ready.base_T_sensor);
+    for (auto& ready : sync.Release(odom_at(i), 0.0))
+      builder.AddScan(ready.scan, ready.base_T_sensor);
   }
   if (through_sync && sync.size() > 0) return -1.0;  // never released
   if (!through_sync) builder.AddScan(scan, Eigen::Isometry3d::Identity());

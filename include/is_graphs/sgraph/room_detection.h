@@ -25,6 +25,7 @@ struct RoomCandidate {
   RoomType type{RoomType::kRoom};
   bool rectangular{false};  // the paper's four-wall room (two opposed pairs)
   double share{0.0};        // of the rays ending on its four walls (rectangular rooms)
+  double area{0.0};         // m², of the visibility polygon (the closed space seen)
   Eigen::Vector2d center{Eigen::Vector2d::Zero()};
   std::vector<int> walls;         // Wall2D ids
   std::vector<double> distances;  // n·center − d per wall (> 0: the centre is in front)
@@ -56,6 +57,15 @@ std::vector<int> CountHits(const RayFan& fan, size_t num_walls);
 std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
                                         const Eigen::Vector2d& position, const RayFan& fan,
                                         const FrontendConfig& config);
+
+/// Whether two room detections (wall ids into `walls`, centres) are one space seen from two
+/// places: they share two opposed walls with both centres between them (0.3 m slack), and no
+/// wall's seen extent lies across the segment joining the centres. A corridor closed at
+/// different places by the walls of rooms and corridors seen through its doorways is one space;
+/// two offices along one corridor wall and one façade are not (a partition lies between).
+bool SameSpace(const std::vector<Wall2D>& walls, const std::vector<int>& a_walls,
+               const Eigen::Vector2d& a_center, const std::vector<int>& b_walls,
+               const Eigen::Vector2d& b_center);
 
 }  // namespace sgraph
 }  // namespace is_graphs

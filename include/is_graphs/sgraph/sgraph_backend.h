@@ -24,6 +24,7 @@ struct BackendRoom {
   // the same room, or a polygonal room seen later as four walls, replaces its walls).
   bool rectangular{false};
   double share{0.0};
+  double area{0.0};  // m², of the visibility polygon that closed it
 };
 
 struct BackendFloor {

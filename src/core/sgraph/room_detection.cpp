@@ -75,7 +75,50 @@ Eigen::Vector2d PolygonCentroid(const std::vector<Eigen::Vector2d>& polygon, dou
   return c / (6.0 * a);
 }
 
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Whether the segments [p0, p1] and [q0, q1] cross (ends within `tol` count).
+bool SegmentsCross(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const Eigen::Vector2d& q0,
+                   const Eigen::Vector2d& q1, double tol) {
+  const Eigen::Vector2d r = p1 - p0, s = q1 - q0;
+  const double denom = Cross(r, s);
+  if (std::abs(denom) < 1e-12) return false;  // parallel
+  const double t = Cross(q0 - p0, s) / denom, u = Cross(q0 - p0, r) / denom;
+  const double tt = tol / std::max(r.norm(), 1e-9), tu = tol / std::max(s.norm(), 1e-9);
+  return t >= -tt && t <= 1.0 + tt && u >= -tu && u <= 1.0 + tu;
+}
+
 }  // namespace
+
+bool SameSpace(const std::vector<Wall2D>& walls, const std::vector<int>& a_walls,
+               const Eigen::Vector2d& a_center, const std::vector<int>& b_walls,
+               const Eigen::Vector2d& b_center) {
+  constexpr double kSlack = 0.3;  // m: a centre may sit this far behind a wall (as InsideWalls)
+  auto find = [&](int id) -> const Wall2D* {
+    for (const Wall2D& w : walls)
+      if (w.id == id) return &w;
+    return nullptr;
+  };
+  auto between = [&](const Wall2D& w, const Eigen::Vector2d& p) {
+    return w.normal.dot(p) - w.d > -kSlack;
+  };
+  std::vector<const Wall2D*> shared;
+  for (int id : a_walls)
+    if (std::count(b_walls.begin(), b_walls.end(), id) > 0)
+      if (const Wall2D* w = find(id)) shared.push_back(w);
+  bool pair = false;
+  for (size_t i = 0; i < shared.size() && !pair; ++i)
+    for (size_t j = i + 1; j < shared.size() && !pair; ++j)
+      pair = shared[i]->normal.dot(shared[j]->normal) < -std::cos(0.2) &&
+             between(*shared[i], a_center) && between(*shared[j], a_center) &&
+             between(*shared[i], b_center) && between(*shared[j], b_center);
+  if (!pair) return false;
+  for (const Wall2D& w : walls)  // a wall seen between the centres separates two rooms
+    if (SegmentsCross(a_center, b_center, w.start, w.end, 0.05)) return false;
+  return true;
+}
 
 RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
                 const FrontendConfig& config) {
@@ -161,6 +204,7 @@ std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
   double area = 0.0;
   room.center = PolygonCentroid(polygon, &area);
   if (area < config.room_min_width * config.room_min_width) return std::nullopt;
+  room.area = area;
   // The paper's four-wall room: two opposed pairs of walls that take (almost) every ray; other
   // members then are walls seen through a doorway and are left out.
   struct Rectangle {

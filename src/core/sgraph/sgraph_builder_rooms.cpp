@@ -65,17 +65,25 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
     // centre moves along it with the robot, a polygonal room's with the visible part of it).
     const bool mutual = shared >= 1 && InsideWalls(room.planes, candidate->center) &&
                         InsideWalls(candidate->walls, room.center);
-    const bool same = (shared >= 2 && (near || room.type != candidate->type)) || mutual;
-    if (!same) continue;
+    const bool seen_before = (shared >= 2 && (near || room.type != candidate->type)) || mutual;
+    // Or one space closed at different places (a corridor by the walls of the corridors crossing
+    // it): the larger four-wall closure is the space itself.
+    const bool same_space =
+        !seen_before && shared >= 2 &&
+        SameSpace(walls, room.planes, room.center, candidate->walls, candidate->center);
+    if (!seen_before && !same_space) continue;
     // A corridor closed later, or a polygonal room (a doorway's far wall counted in) seen
     // later as the four-wall room it is, takes the better view.
-    const bool better = (room.type == RoomType::kCorridor && candidate->type == RoomType::kRoom) ||
-                        (room.type == RoomType::kRoom && candidate->rectangular &&
-                         (!room.rectangular || candidate->share > room.share + 0.05));
+    const bool better =
+        (room.type == RoomType::kCorridor && candidate->type == RoomType::kRoom) ||
+        (room.type == RoomType::kRoom && candidate->rectangular &&
+         (!room.rectangular || (seen_before && candidate->share > room.share + 0.05) ||
+          (same_space && candidate->area > 1.2 * room.area)));
     if (better) {
       room.type = RoomType::kRoom;
       room.rectangular = candidate->rectangular;
       room.share = candidate->share;
+      room.area = candidate->area;
       room.center = candidate->center;
       room.initial_center = candidate->center;
       room.planes = candidate->walls;
@@ -95,6 +103,7 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
   room.axis = candidate->axis;
   room.rectangular = candidate->rectangular;
   room.share = candidate->share;
+  room.area = candidate->area;
   rooms_.push_back(room);
   room_keyframes_.push_back({keyframe});
   UpdateFloor();
