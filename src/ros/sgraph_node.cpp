@@ -205,7 +205,7 @@ class SGraphNode {
           2.0,
           "sgraph_node: no odometry up to the end of the cloud's sweep (%.3f s) "
           "after odom_wait %.2f s: processed without it (the pose held over the rest)",
-          sgraph::LastFiring(cloud.scan), params_.frontend.odom_wait);
+          cloud.last_firing, params_.frontend.odom_wait);
     const auto r = builder_.AddScan(cloud.scan, cloud.base_T_sensor);
     if (r.restarted)
       ROS_WARN("sgraph_node: %s", r.warning.c_str());  // never throttled away

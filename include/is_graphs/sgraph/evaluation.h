@@ -56,10 +56,6 @@ struct PlaneError {
 std::vector<PlaneError> EvaluatePlanes(const SGraph& graph, const agraph::AGraph& building,
                                        const Eigen::Isometry3d& bim_T_map, int min_points);
 
-/// Rooms against the BIM rooms the robot walked through (A-Graph rooms holding ≥ 2 keyframes
-/// by ground truth). An S-Graph room or corridor is correct when its centre (in bim) lies in a
-/// walked room that no earlier S-Graph room took; false otherwise (outside the walked rooms, or
-/// a second S-Graph room for one BIM room).
 /// One S-Graph room against the building: the A-Graph room its centre lies in (-1: none) and
 /// whether it counts as found, a duplicate (a second S-room in that A-room) or outside.
 struct RoomVerdict {
@@ -69,6 +65,10 @@ struct RoomVerdict {
   enum class Kind { kFound, kDuplicate, kOutside } kind{Kind::kFound};
 };
 
+/// Rooms against the BIM rooms the robot walked through (A-Graph rooms holding ≥ 2 keyframes
+/// by ground truth). An S-Graph room or corridor is correct when its centre (in bim) lies in a
+/// walked room that no earlier S-Graph room took; false otherwise (outside the walked rooms, or
+/// a second S-Graph room for one BIM room).
 struct RoomEvaluation {
   std::vector<RoomVerdict> verdicts;  // one per S-Graph room, in the graph's order
   int walked{0};                      // A-Graph rooms with ≥ 2 keyframes inside

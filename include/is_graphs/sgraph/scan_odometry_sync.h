@@ -18,17 +18,18 @@ double LastFiring(const Scan& scan);
 struct PendingScan {
   Scan scan;
   Eigen::Isometry3d base_T_sensor{Eigen::Isometry3d::Identity()};
-  double arrival{0.0};     // when it arrived, on the caller's monotonic clock [s]
-  bool waited_out{false};  // released because odometry did not come within max_wait
+  double last_firing{0.0};  // LastFiring(scan), once
+  double arrival{0.0};      // when it arrived, on the caller's monotonic clock [s]
+  bool waited_out{false};   // released because odometry did not come within max_wait
 };
 
 /// Holds each cloud until odometry reaches its last firing, so that deskewing interpolates the
 /// sweep instead of holding the last odometry pose over its end. On a live robot or a bag played
 /// on a loaded machine a cloud can arrive before the odometry messages of its own sweep (two
 /// topics, two connections): deskewed without them, a scan taken while turning at 40 deg/s has
-/// its walls rotated by up to 2 deg (measured on D5 at 2x with both cores busy). A cloud waits at
-/// most `max_wait` seconds of the caller's clock and never behind a cloud still waiting: order
-/// is kept. max_wait 0 releases every cloud at once.
+/// its walls rotated by up to 3 deg (D5 at 2x with both cores busy: a keyframe 1.4 deg off in yaw).
+/// A cloud waits at most `max_wait` seconds of the caller's clock and never behind a cloud still
+/// waiting: order is kept. max_wait 0 releases every cloud at once.
 class ScanOdometrySync {
  public:
   explicit ScanOdometrySync(double max_wait, std::size_t max_pending = 32)

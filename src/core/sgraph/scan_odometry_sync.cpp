@@ -18,6 +18,7 @@ void ScanOdometrySync::Push(Scan scan, const Eigen::Isometry3d& base_T_sensor, d
   PendingScan p;
   p.scan = std::move(scan);
   p.base_T_sensor = base_T_sensor;
+  p.last_firing = LastFiring(p.scan);  // not per odometry message: a cloud has ~30k points
   p.arrival = now;
   pending_.push_back(std::move(p));
 }
@@ -29,7 +30,7 @@ std::vector<PendingScan> ScanOdometrySync::Release(double odom_stamp, double now
   std::vector<PendingScan> out;
   while (!pending_.empty()) {
     PendingScan& front = pending_.front();
-    const bool covered = LastFiring(front.scan) <= odom_stamp + kStampTolerance;
+    const bool covered = front.last_firing <= odom_stamp + kStampTolerance;
     const bool waited = now - front.arrival >= max_wait_;
     const bool full = pending_.size() > max_pending_;
     if (!covered && !waited && !full) break;
