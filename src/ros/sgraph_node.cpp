@@ -107,6 +107,7 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "room_max_width", f.room_max_width);
   Read(pnh, "corridor_max_width", f.corridor_max_width);
   Read(pnh, "room_gap_margin", f.room_gap_margin);
+  Read(pnh, "room_opening_band", f.room_opening_band);
   Read(pnh, "room_rays", f.room_rays);
   Read(pnh, "room_rectangle_share", f.room_rectangle_share);
   Read(pnh, "room_max_opening", f.room_max_opening);

@@ -32,6 +32,24 @@ struct RoomCandidate {
   Eigen::Vector2d axis{Eigen::Vector2d::Zero()};  // corridors: the direction along it
 };
 
+/// Whether `position` lies in an opening of a mapped wall: within `room_opening_band` of the
+/// wall's line, where its seen extent (grown by `room_gap_margin`) runs. Standing in a doorway
+/// or a corridor's mouth the robot sees two spaces at once, and their union is no room.
+bool InOpening(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
+               const FrontendConfig& config);
+
+/// Whether two walls lie on one line, facing the same way (pieces of one wall face, or one
+/// face mapped twice before the planes were merged): normals within 3°, offsets within 0.1 m.
+bool SameLine(const Wall2D& a, const Wall2D& b);
+
+/// The wall with that id, nullptr if none.
+const Wall2D* FindWall(const std::vector<Wall2D>& walls, int id);
+
+/// Whether every wall in `all` but not in `kept` (ids into `walls`) lies wholly behind the line
+/// of a wall in `kept`, i.e. was seen beyond it through an opening. False when an id is unknown.
+bool LeftOutLieBehind(const std::vector<Wall2D>& walls, const std::vector<int>& all,
+                      const std::vector<int>& kept);
+
 /// Rays cast horizontally from a position against the walls facing it; each wall is extended
 /// by `room_gap_margin` at both ends (doorways, unseen corners).
 struct RayFan {

@@ -83,6 +83,7 @@ std::string FrontendConfig::Validate() const {
   c.Less("room_min_width", room_min_width, "room_max_width", room_max_width);
   c.Positive("corridor_max_width", corridor_max_width);
   c.NonNegative("room_gap_margin", room_gap_margin);
+  c.NonNegative("room_opening_band", room_opening_band);
   c.Range("room_rays", room_rays, 16, 3600);
   c.Range("room_rectangle_share", room_rectangle_share, 0.5, 1.0);
   c.Positive("room_max_opening", room_max_opening);

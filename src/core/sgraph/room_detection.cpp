@@ -8,50 +8,112 @@
 
 namespace is_graphs {
 namespace sgraph {
+
+bool SameLine(const Wall2D& a, const Wall2D& b) {
+  return a.normal.dot(b.normal) > std::cos(3.0 * M_PI / 180.0) && std::abs(a.d - b.d) < 0.1;
+}
+
+const Wall2D* FindWall(const std::vector<Wall2D>& walls, int id) {
+  for (const Wall2D& w : walls)
+    if (w.id == id) return &w;
+  return nullptr;
+}
+
+bool LeftOutLieBehind(const std::vector<Wall2D>& walls, const std::vector<int>& all,
+                      const std::vector<int>& kept) {
+  constexpr double kBehind = 0.1;  // m
+  for (int id : all) {
+    if (std::count(kept.begin(), kept.end(), id) > 0) continue;
+    const Wall2D* w = FindWall(walls, id);
+    if (!w) return false;
+    const bool behind = std::any_of(kept.begin(), kept.end(), [&](int k) {
+      const Wall2D* c = FindWall(walls, k);
+      return c && c->normal.dot(w->start) - c->d < -kBehind &&
+             c->normal.dot(w->end) - c->d < -kBehind;
+    });
+    if (!behind) return false;
+  }
+  return true;
+}
+
 namespace {
 
 constexpr double kRectangleSlack = 0.2;  // m: a hit this far outside a rectangle is on it
 constexpr double kCornerSlack = 0.3;     // m: a wall's seen extent, grown by this (corners)
-
-/// Whether two walls lie on one line (two pieces of a wall with a doorway between them).
-bool OnLine(const Wall2D& a, const Wall2D& b) {
-  return a.normal.dot(b.normal) > std::cos(3.0 * M_PI / 180.0) && std::abs(a.d - b.d) < 0.1;
-}
+constexpr double kMinDividing = 0.5;     // m: the least of a wall seen across a rectangle
 
 Eigen::Vector2d Along(const Wall2D& w) { return Eigen::Vector2d(-w.normal.y(), w.normal.x()); }
+
+/// Where the lines of walls p and q cross.
+Eigen::Vector2d Corner(const Wall2D& p, const Wall2D& q) {
+  Eigen::Matrix2d m;
+  m << p.normal.transpose(), q.normal.transpose();
+  return m.fullPivLu().solve(Eigen::Vector2d(p.d, q.d));
+}
+
+/// The widest stretch of [s0, s1] along `line` that no wall on that line covers, each wall's
+/// seen extent grown by `slack` at both ends; the length covered in `covered_length`.
+double LargestGap(const std::vector<Wall2D>& walls, const Wall2D& line, double s0, double s1,
+                  double slack, double* covered_length = nullptr) {
+  if (s0 > s1) std::swap(s0, s1);
+  const Eigen::Vector2d along = Along(line);
+  std::vector<std::pair<double, double>> covered;
+  for (const Wall2D& other : walls) {
+    if (!SameLine(other, line)) continue;
+    double lo = along.dot(other.start), hi = along.dot(other.end);
+    if (lo > hi) std::swap(lo, hi);
+    covered.emplace_back(lo - slack, hi + slack);
+  }
+  std::sort(covered.begin(), covered.end());
+  double largest = 0.0, reached = s0, length = 0.0;
+  for (const auto& [lo, hi] : covered) {
+    if (lo > reached) largest = std::max(largest, std::min(lo, s1) - reached);
+    length += std::max(0.0, std::min(hi, s1) - std::max(lo, reached));
+    reached = std::max(reached, hi);
+    if (reached >= s1) break;
+  }
+  if (covered_length) *covered_length = length;
+  return std::max(largest, s1 - reached);
+}
 
 /// The widest stretch of the rectangle's sides (walls {a0, a1} and {b0, b1} opposed) that no
 /// wall on the side's line covers: a doorway is narrow, the rest of an L-shaped room is not.
 double LargestOpening(const std::vector<Wall2D>& walls, const int four[4]) {
-  auto corner = [&](const Wall2D& p, const Wall2D& q) {
-    Eigen::Matrix2d m;
-    m << p.normal.transpose(), q.normal.transpose();
-    return Eigen::Vector2d(m.fullPivLu().solve(Eigen::Vector2d(p.d, q.d)));
-  };
   double largest = 0.0;
   for (int side = 0; side < 4; ++side) {
     const Wall2D& w = walls[four[side]];
     const int* across = side < 2 ? four + 2 : four;  // the other pair bounds this side
     const Eigen::Vector2d along = Along(w);
-    double s0 = along.dot(corner(w, walls[across[0]])), s1 = along.dot(corner(w, walls[across[1]]));
-    if (s0 > s1) std::swap(s0, s1);
-    std::vector<std::pair<double, double>> covered;
-    for (const Wall2D& other : walls) {
-      if (!OnLine(other, w)) continue;
-      double lo = along.dot(other.start), hi = along.dot(other.end);
-      if (lo > hi) std::swap(lo, hi);
-      covered.emplace_back(lo - kCornerSlack, hi + kCornerSlack);
-    }
-    std::sort(covered.begin(), covered.end());
-    double reached = s0;
-    for (const auto& [lo, hi] : covered) {
-      if (lo > reached) largest = std::max(largest, std::min(lo, s1) - reached);
-      reached = std::max(reached, hi);
-      if (reached >= s1) break;
-    }
-    largest = std::max(largest, s1 - reached);
+    largest = std::max(largest, LargestGap(walls, w, along.dot(Corner(w, walls[across[0]])),
+                                           along.dot(Corner(w, walls[across[1]])), kCornerSlack));
   }
   return largest;
+}
+
+/// Whether a mapped wall parallel to one pair of the rectangle runs across its inside (seen
+/// there over kMinDividing at least), leaving no more than `max_opening` open (a doorway): the
+/// rectangle is two spaces (a corridor and the room seen through its door), not a room. A partition
+/// that leaves a wide passage, or clutter, does not divide it. Seen extents only (no corner slack).
+bool DividedByWall(const std::vector<Wall2D>& walls, const int four[4], double max_opening) {
+  for (const Wall2D& w : walls) {
+    if (std::any_of(four, four + 4, [&](int f) { return SameLine(w, walls[f]); })) continue;
+    int pair = -1;
+    for (int k = 0; k < 2; ++k)
+      if (std::abs(w.normal.dot(walls[four[2 * k]].normal)) > std::cos(0.2)) pair = k;
+    if (pair < 0) continue;
+    const Eigen::Vector2d mid = 0.5 * (w.start + w.end);
+    const bool inside = std::all_of(four + 2 * pair, four + 2 * pair + 2, [&](int f) {
+      return walls[f].normal.dot(mid) - walls[f].d > kRectangleSlack;
+    });
+    if (!inside) continue;
+    const int* across = four + 2 * (1 - pair);
+    const Eigen::Vector2d along = Along(w);
+    double covered = 0.0;
+    const double gap = LargestGap(walls, w, along.dot(Corner(w, walls[across[0]])),
+                                  along.dot(Corner(w, walls[across[1]])), 0.0, &covered);
+    if (covered >= kMinDividing && gap <= max_opening) return true;
+  }
+  return false;
 }
 
 // Area centroid of a closed polygon (shoelace); the vertex mean for a degenerate one.
@@ -96,18 +158,13 @@ bool SameSpace(const std::vector<Wall2D>& walls, const std::vector<int>& a_walls
                const Eigen::Vector2d& a_center, const std::vector<int>& b_walls,
                const Eigen::Vector2d& b_center) {
   constexpr double kSlack = 0.3;  // m: a centre may sit this far behind a wall (as InsideWalls)
-  auto find = [&](int id) -> const Wall2D* {
-    for (const Wall2D& w : walls)
-      if (w.id == id) return &w;
-    return nullptr;
-  };
   auto between = [&](const Wall2D& w, const Eigen::Vector2d& p) {
     return w.normal.dot(p) - w.d > -kSlack;
   };
   std::vector<const Wall2D*> shared;
   for (int id : a_walls)
     if (std::count(b_walls.begin(), b_walls.end(), id) > 0)
-      if (const Wall2D* w = find(id)) shared.push_back(w);
+      if (const Wall2D* w = FindWall(walls, id)) shared.push_back(w);
   bool pair = false;
   for (size_t i = 0; i < shared.size() && !pair; ++i)
     for (size_t j = i + 1; j < shared.size() && !pair; ++j)
@@ -118,6 +175,19 @@ bool SameSpace(const std::vector<Wall2D>& walls, const std::vector<int>& a_walls
   for (const Wall2D& w : walls)  // a wall seen between the centres separates two rooms
     if (SegmentsCross(a_center, b_center, w.start, w.end, 0.05)) return false;
   return true;
+}
+
+bool InOpening(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
+               const FrontendConfig& config) {
+  for (const Wall2D& w : walls) {
+    if (std::abs(w.normal.dot(position) - w.d) > config.room_opening_band) continue;
+    const Eigen::Vector2d along = Along(w);
+    double lo = along.dot(w.start), hi = along.dot(w.end);
+    if (lo > hi) std::swap(lo, hi);
+    const double s = along.dot(position);
+    if (s >= lo - config.room_gap_margin && s <= hi + config.room_gap_margin) return true;
+  }
+  return false;
 }
 
 RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
@@ -246,7 +316,8 @@ std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
         const int h = fan.hit[k];
         if (h < 0) continue;
         const int side = static_cast<int>(
-            std::find_if(four, four + 4, [&](int w) { return OnLine(walls[h], walls[w]); }) - four);
+            std::find_if(four, four + 4, [&](int w) { return SameLine(walls[h], walls[w]); }) -
+            four);
         if (side == 4) continue;
         const Eigen::Vector2d hit = position + fan.range[k] * fan.directions[k];
         bool inside = true;
@@ -258,6 +329,7 @@ std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
       }
       if (*std::min_element(per_wall, per_wall + 4) < significant) continue;
       if (LargestOpening(walls, four) > config.room_max_opening) continue;
+      if (DividedByWall(walls, four, config.room_max_opening)) continue;
       if (!best || rays > best->rays)
         best = Rectangle{{a0, a1, b0, b1}, rays, m.fullPivLu().solve(rhs)};
     }

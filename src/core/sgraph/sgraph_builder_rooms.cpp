@@ -48,6 +48,7 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
     walls.push_back(w);
   }
   const Eigen::Vector2d position = pose.translation().head<2>();
+  if (InOpening(walls, position, frontend_)) return;
   const RayFan fan = CastRays(walls, position, frontend_);
   std::optional<RoomCandidate> candidate = DetectRoom(walls, position, fan, frontend_);
   if (!candidate) candidate = DetectCorridor(walls, position, fan, frontend_);
@@ -57,9 +58,21 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
   // a room.
   for (size_t r = 0; r < rooms_.size(); ++r) {
     BackendRoom& room = rooms_[r];
-    int shared = 0;
-    for (int id : candidate->walls)
-      shared += std::count(room.planes.begin(), room.planes.end(), id) > 0 ? 1 : 0;
+    // Shared walls: the same plane, or one on the same line (a face mapped twice before its
+    // planes were merged).
+    int shared = 0, same_id = 0;
+    for (int id : candidate->walls) {
+      const bool same = std::count(room.planes.begin(), room.planes.end(), id) > 0;
+      same_id += same ? 1 : 0;
+      shared += same || std::any_of(room.planes.begin(), room.planes.end(),
+                                    [&](int p) {
+                                      const Wall2D* a = FindWall(walls, id);
+                                      const Wall2D* b = FindWall(walls, p);
+                                      return a && b && SameLine(*a, *b);
+                                    })
+                    ? 1
+                    : 0;
+    }
     const bool near = (room.center - candidate->center).norm() < 1.5;
     // Or each centre inside the other's walls (one room seen from elsewhere: a corridor's
     // centre moves along it with the robot, a polygonal room's with the visible part of it).
@@ -71,14 +84,34 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
     const bool same_space =
         !seen_before && shared >= 2 &&
         SameSpace(walls, room.planes, room.center, candidate->walls, candidate->center);
-    if (!seen_before && !same_space) continue;
+    // Or one nested in the other, sharing three walls: a part of a four-wall room closed off by
+    // a partition that leaves a wide passage (the room was accepted with that wall inside it),
+    // or a four-wall room and the larger space it opens onto without a wall between (an
+    // open-plan hall, kitchen and living room seen from the hall).
+    const bool nested =
+        !seen_before && !same_space && shared >= 3 &&
+        (InsideWalls(room.planes, candidate->center) || InsideWalls(candidate->walls, room.center));
+    if (!seen_before && !same_space && !nested) continue;
     // A corridor closed later, or a polygonal room (a doorway's far wall counted in) seen
     // later as the four-wall room it is, takes the better view.
     const bool better =
         (room.type == RoomType::kCorridor && candidate->type == RoomType::kRoom) ||
         (room.type == RoomType::kRoom && candidate->rectangular &&
          (!room.rectangular || (seen_before && candidate->share > room.share + 0.05) ||
-          (same_space && candidate->area > 1.2 * room.area)));
+          (same_space && candidate->area > 1.2 * room.area))) ||
+        // Of a nested pair: the four-wall room (the larger if both are); of two polygonal
+        // rooms, the one less than half the other's area (the larger is that room and what it
+        // opens onto).
+        (nested && candidate->rectangular &&
+         (!room.rectangular || candidate->area > 1.2 * room.area)) ||
+        (nested && !candidate->rectangular && !room.rectangular &&
+         candidate->area < 0.5 * room.area) ||
+        // A polygonal room closed again by fewer of its walls, each wall left out lying behind
+        // one kept: it was seen through a doorway (the first view, from just inside it).
+        (room.type == RoomType::kRoom && !room.rectangular && seen_before &&
+         same_id == static_cast<int>(candidate->walls.size()) &&
+         candidate->walls.size() < room.planes.size() &&
+         LeftOutLieBehind(walls, room.planes, candidate->walls));
     if (better) {
       room.type = RoomType::kRoom;
       room.rectangular = candidate->rectangular;
