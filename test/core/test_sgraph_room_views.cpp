@@ -65,8 +65,8 @@ TEST(RoomViews, CorridorAndTheRoomSeenThroughItsDoorAreNoFourWallRoom) {
 
 // A room (x 0..7, y 0..5) with a partition from its south wall at x = 2.6, `length` long.
 std::vector<Wall2D> RoomWithPartition(double length) {
-  return {Face(0, {0, 0}, {7, 0}, {0, 1}),     Face(1, {7, 0}, {7, 5}, {-1, 0}),
-          Face(2, {7, 5}, {0, 5}, {0, -1}),    Face(3, {0, 5}, {0, 0}, {1, 0}),
+  return {Face(0, {0, 0}, {7, 0}, {0, 1}), Face(1, {7, 0}, {7, 5}, {-1, 0}),
+          Face(2, {7, 5}, {0, 5}, {0, -1}), Face(3, {0, 5}, {0, 0}, {1, 0}),
           Face(4, {2.6, 0}, {2.6, length}, {1, 0})};  // its east face
 }
 
@@ -78,8 +78,7 @@ TEST(RoomViews, PartitionLeavingAWidePassageDoesNotDivideARoom) {
   EXPECT_LT((wide->center - Vector2d(3.5, 2.5)).norm(), 1e-6);
   // 3.9 m long: a 1.1 m doorway. Not the 7 x 5 m room.
   const auto narrow = DetectAt(RoomWithPartition(3.9), Vector2d(4.5, 2.5));
-  EXPECT_FALSE(narrow && narrow->rectangular &&
-               (narrow->center - Vector2d(3.5, 2.5)).norm() < 0.5);
+  EXPECT_FALSE(narrow && narrow->rectangular && (narrow->center - Vector2d(3.5, 2.5)).norm() < 0.5);
 }
 
 TEST(RoomViews, StandingInADoorwayOrACorridorsMouthIsInAnOpening) {
@@ -88,8 +87,8 @@ TEST(RoomViews, StandingInADoorwayOrACorridorsMouthIsInAnOpening) {
   // door at x 9.5..10.5.
   const std::vector<Wall2D> wall = {Face(0, {0, 2.5}, {12, 2.5}, {0, -1}),
                                     Face(1, {0, 2.65}, {12, 2.65}, {0, 1})};
-  EXPECT_TRUE(InOpening(wall, Vector2d(10.0, 2.58), config));  // in the door
-  EXPECT_TRUE(InOpening(wall, Vector2d(10.0, 2.9), config));   // just through it
+  EXPECT_TRUE(InOpening(wall, Vector2d(10.0, 2.58), config));   // in the door
+  EXPECT_TRUE(InOpening(wall, Vector2d(10.0, 2.9), config));    // just through it
   EXPECT_FALSE(InOpening(wall, Vector2d(10.0, 1.25), config));  // the hall's middle
   EXPECT_FALSE(InOpening(wall, Vector2d(10.0, 4.0), config));   // the room's
   // Beyond the wall's end (plus room_gap_margin) the line runs through nothing.
@@ -105,10 +104,10 @@ TEST(RoomViews, WallsLeftOutLieBehindTheKeptOnes) {
   // A room (y 1.32..5.1) first closed from its doorway with the hall's far wall (y = -1.2,
   // seen through the door), then from inside by its own four walls.
   const std::vector<Wall2D> walls = {
-      Face(1, {-6, -1.2}, {6, -1.2}, {0, 1}),  // the hall's far wall
-      Face(20, {-8, 1.32}, {6, 1.32}, {0, 1}),  // the room's wall on the hall's side
-      Face(8, {-8, 5.1}, {6, 5.1}, {0, -1}),    // the room's far wall
-      Face(63, {-7, 1.32}, {-7, 5.1}, {1, 0}),  // its west wall
+      Face(1, {-6, -1.2}, {6, -1.2}, {0, 1}),    // the hall's far wall
+      Face(20, {-8, 1.32}, {6, 1.32}, {0, 1}),   // the room's wall on the hall's side
+      Face(8, {-8, 5.1}, {6, 5.1}, {0, -1}),     // the room's far wall
+      Face(63, {-7, 1.32}, {-7, 5.1}, {1, 0}),   // its west wall
       Face(69, {-2, 1.32}, {-2, 5.1}, {-1, 0}),  // its east wall
   };
   EXPECT_TRUE(LeftOutLieBehind(walls, {1, 20, 8, 63, 69}, {20, 8, 63, 69}));
@@ -126,7 +125,7 @@ TEST(RoomViews, AFaceMappedTwiceIsOnOneLine) {
   tilted.d = tilted.normal.dot(tilted.start);
   EXPECT_TRUE(SameLine(a, tilted));
   EXPECT_FALSE(SameLine(a, Face(2, {0, 0.15}, {4, 0.15}, {0, -1})));  // its back face
-  EXPECT_FALSE(SameLine(a, Face(3, {0, 0.2}, {4, 0.2}, {0, 1})));      // 0.2 m apart
+  EXPECT_FALSE(SameLine(a, Face(3, {0, 0.2}, {4, 0.2}, {0, 1})));     // 0.2 m apart
 }
 
 }  // namespace

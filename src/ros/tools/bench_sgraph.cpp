@@ -178,12 +178,13 @@ int main(int argc, char** argv) {
   const auto planes = sgraph::EvaluatePlanes(graph, building, bim_T_map, min_plane_points_eval);
   int matched = 0, good = 0, openings = 0;
   std::vector<double> dist, ang;
+  std::string off;  // the planes outside 5 cm / 1 deg, one line each
   for (const auto& p : planes) {
     if (p.surface < 0) continue;
+    const auto it = std::find_if(graph.planes.begin(), graph.planes.end(),
+                                 [&](const sgraph::Plane& q) { return q.id == p.plane; });
+    const std::string cls = mesh ? sgraph::PlaneSupportClass(*it, bim_T_map, *mesh, 0.04) : "";
     if (mesh) {
-      const auto it = std::find_if(graph.planes.begin(), graph.planes.end(),
-                                   [&](const sgraph::Plane& q) { return q.id == p.plane; });
-      const std::string cls = sgraph::PlaneSupportClass(*it, bim_T_map, *mesh, 0.04);
       if (cls == "IfcWindow" || cls == "IfcDoor") {
         ++openings;
         continue;
@@ -192,7 +193,19 @@ int main(int argc, char** argv) {
     ++matched;
     dist.push_back(p.distance);
     ang.push_back(p.angle_deg);
-    if (p.distance <= 0.05 && p.angle_deg <= 1.0) ++good;
+    if (p.distance <= 0.05 && p.angle_deg <= 1.0) {
+      ++good;
+      continue;
+    }
+    const Eigen::Vector3d a = bim_T_map * Eigen::Vector3d(it->start.x(), it->start.y(), 0.0);
+    const Eigen::Vector3d b = bim_T_map * Eigen::Vector3d(it->end.x(), it->end.y(), 0.0);
+    char line[256];
+    std::snprintf(line, sizeof(line),
+                  "  plane %d (%d points, z %.2f..%.2f) from (%.2f, %.2f) to (%.2f, %.2f) on "
+                  "surface %d: %.3f m, %.2f deg (on %s)\n",
+                  p.plane, it->num_points, it->z_min, it->z_max, a.x(), a.y(), b.x(), b.y(),
+                  p.surface, p.distance, p.angle_deg, cls.empty() ? "-" : cls.c_str());
+    off += line;
   }
   std::printf(
       "wall planes (>= %d points): %zu, on windows/doors: %d, on a BIM wall-surface: %d, "
@@ -200,6 +213,7 @@ int main(int argc, char** argv) {
       "max %.2f deg\n",
       min_plane_points_eval, planes.size(), openings, matched, good, Percentile(dist, 0.5),
       Percentile(dist, 1.0), Percentile(ang, 0.5), Percentile(ang, 1.0));
+  std::printf("%s", off.c_str());
   const auto rooms = sgraph::EvaluateRooms(graph, building, truth, bim_T_map);
   std::printf(
       "rooms: walked through %d, found %d, detected %d, false %d (of which duplicates %d)\n",
