@@ -79,7 +79,7 @@ struct FrontendConfig {
   double corridor_max_width{3.0};
   double room_gap_margin{1.1};  // wall segments are extended this much (doorways)
   // m: a keyframe this close to a mapped wall's line (where the wall runs) stands in a doorway
-  // or opening and sees two spaces at once: no room or corridor is detected there.
+  // or opening and sees two spaces at once: no room or corridor is detected there (0: off).
   double room_opening_band{0.35};
   int room_rays{180};
   // Share of the rays that two opposed pairs of walls must take (ending on them within the
