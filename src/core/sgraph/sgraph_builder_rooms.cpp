@@ -63,15 +63,14 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
     int shared = 0, same_id = 0;
     for (int id : candidate->walls) {
       const bool same = std::count(room.planes.begin(), room.planes.end(), id) > 0;
+      const Wall2D* wall = FindWall(walls, id);
+      const bool on_line =
+          !same && wall && std::any_of(room.planes.begin(), room.planes.end(), [&](int p) {
+            const Wall2D* other = FindWall(walls, p);
+            return other && SameLine(*wall, *other);
+          });
       same_id += same ? 1 : 0;
-      shared += same || std::any_of(room.planes.begin(), room.planes.end(),
-                                    [&](int p) {
-                                      const Wall2D* a = FindWall(walls, id);
-                                      const Wall2D* b = FindWall(walls, p);
-                                      return a && b && SameLine(*a, *b);
-                                    })
-                    ? 1
-                    : 0;
+      shared += same || on_line ? 1 : 0;
     }
     const bool near = (room.center - candidate->center).norm() < 1.5;
     // Or each centre inside the other's walls (one room seen from elsewhere: a corridor's
@@ -99,11 +98,11 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
         (room.type == RoomType::kRoom && candidate->rectangular &&
          (!room.rectangular || (seen_before && candidate->share > room.share + 0.05) ||
           (same_space && candidate->area > 1.2 * room.area))) ||
-        // Of a nested pair: the four-wall room (the larger if both are); of two polygonal
-        // rooms, the one less than half the other's area (the larger is that room and what it
-        // opens onto).
-        (nested && candidate->rectangular &&
-         (!room.rectangular || candidate->area > 1.2 * room.area)) ||
+        // Of a nested pair: the four-wall room (above), the larger if both are; of two
+        // polygonal rooms, the one less than half the other's area (the larger is that room and
+        // what it opens onto).
+        (nested && candidate->rectangular && room.rectangular &&
+         candidate->area > 1.2 * room.area) ||
         (nested && !candidate->rectangular && !room.rectangular &&
          candidate->area < 0.5 * room.area) ||
         // A polygonal room closed again by fewer of its walls, each wall left out lying behind
