@@ -86,6 +86,8 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "wall_min_rise", f.wall_min_rise);
   Read(pnh, "sensor_max_elevation_deg", f.sensor_max_elevation_deg);
   Read(pnh, "segment_gap", f.segment_gap);
+  Read(pnh, "wall_normal_cell", f.wall_normal_cell);
+  Read(pnh, "wall_normal_max_angle_deg", f.wall_normal_max_angle_deg);
   Read(pnh, "point_sigma", f.point_sigma);
   Read(pnh, "max_effective_points", f.max_effective_points);
   Read(pnh, "extract_floor", f.extract_floor);

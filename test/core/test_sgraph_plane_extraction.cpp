@@ -87,7 +87,10 @@ TEST_P(ExtractionTest, FindsEveryWallAndTheFloorFacingTheSensor) {
     if (s.plane.normal.dot(north.normal) > std::cos(M_PI / 180.0) &&
         std::abs(s.plane.d - north.d) < 0.02) {
       ++north_segments;
-      EXPECT_NEAR((s.end - s.start).norm(), 2.0, 0.15);
+      // 2 m, less up to 0.3 m at the corner end: points whose surroundings take in the west
+      // wall are left out of the fit (local_surface.h).
+      EXPECT_GT((s.end - s.start).norm(), 1.7);
+      EXPECT_LT((s.end - s.start).norm(), 2.1);
     }
   EXPECT_EQ(north_segments, 2) << "the north wall's two pieces, split at the opening";
   const int floor = Find(segments, geometry::Plane(Vector3d::UnitZ(), -0.5));

@@ -128,6 +128,28 @@ TEST(RoomViews, AFaceMappedTwiceIsOnOneLine) {
   EXPECT_FALSE(SameLine(a, Face(3, {0, 0.2}, {4, 0.2}, {0, 1})));     // 0.2 m apart
 }
 
+// An L-shaped room (x 0..6, y 0..2, and x 0..2, y 2..6) seen from its corner arm: a point in
+// the other arm is in view, one behind the inner corner is not, one past a wall is not. A
+// polygonal view's walls enclose no convex area, so "inside" is what the rays saw.
+TEST(RoomViews, InsideAViewIsWhatItsRaysSaw) {
+  const std::vector<Wall2D> walls = {
+      Face(0, {0, 0}, {6, 0}, {0, 1}),  Face(1, {6, 0}, {6, 2}, {-1, 0}),
+      Face(2, {2, 2}, {6, 2}, {0, -1}), Face(3, {2, 2}, {2, 6}, {-1, 0}),
+      Face(4, {0, 6}, {2, 6}, {0, -1}), Face(5, {0, 0}, {0, 6}, {1, 0}),
+  };
+  const FrontendConfig config;
+  const Vector2d at(1.0, 1.0);
+  const RayFan fan = CastRays(walls, at, config);
+  EXPECT_TRUE(InFan(fan, at, Vector2d(5.0, 1.0), 0.3));   // along the x arm
+  EXPECT_TRUE(InFan(fan, at, Vector2d(1.0, 5.0), 0.3));   // along the y arm
+  EXPECT_FALSE(InFan(fan, at, Vector2d(4.0, 4.0), 0.3));  // behind the inner corner
+  EXPECT_FALSE(InFan(fan, at, Vector2d(7.0, 1.0), 0.3));  // past the end wall
+  EXPECT_FALSE(InFan(fan, at, Vector2d(5.9, 1.0), 0.3));  // within the margin of it
+  // The polygon's walls alone would put neither arm's far end inside: the "in front of every
+  // wall" test fails for a point in the y arm (behind face 2's line).
+  EXPECT_LT(walls[2].normal.dot(Vector2d(1.0, 5.0)) - walls[2].d, 0.0);
+}
+
 }  // namespace
 }  // namespace sgraph
 }  // namespace is_graphs

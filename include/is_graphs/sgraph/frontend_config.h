@@ -52,7 +52,11 @@ struct FrontendConfig {
   // beam (sensor_max_elevation_deg) cannot see that high on it.
   double wall_min_rise{0.45};
   double sensor_max_elevation_deg{15.0};
-  double segment_gap{0.5};        // coplanar points further apart are different segments
+  double segment_gap{0.5};  // coplanar points further apart are different segments
+  // A wall's RANSAC inlier is kept only where the cloud around it (its cell of this size and the
+  // 26 around it) faces the wall's way within wall_normal_max_angle_deg (90: no check).
+  double wall_normal_cell{0.15};
+  double wall_normal_max_angle_deg{30.0};
   double point_sigma{0.03};       // range noise used for the plane covariance
   int max_effective_points{150};  // cap on independent points (correlated errors)
   bool extract_floor{true};

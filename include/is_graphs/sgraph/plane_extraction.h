@@ -27,10 +27,13 @@ struct PlaneSegment {
 ///
 /// Method: sequential RANSAC (PCL SACSegmentation) with constrained models: the floor first,
 /// a plane perpendicular to `up` among points below the sensor; then walls, planes parallel to
-/// `up` (SACMODEL_PARALLEL_PLANE), each found plane's inliers removed before the next. Each
-/// wall's inliers are split into coplanar but disjoint segments (plane_segments.h), and each
-/// segment is refitted by total least squares with its covariance (plane_fit.h). Segments
-/// shorter or lower than configured are dropped. Normals point to the sensor's side.
+/// `up` (SACMODEL_PARALLEL_PLANE), each found plane's inliers removed before the next. A
+/// wall's inliers whose surroundings face another way (a perpendicular wall's points at a
+/// corner, a door's reveal, inside the RANSAC band) are dropped (local_surface.h): they tilt a
+/// short piece by degrees. The rest are split into coplanar but disjoint segments
+/// (plane_segments.h), and each segment is refitted by total least squares with its covariance
+/// (plane_fit.h). Segments shorter or lower than configured are dropped. Normals point to the
+/// sensor's side.
 ///
 /// `up` is the gravity direction in the points' frame, `sensor_origin` the sensor's position.
 std::vector<PlaneSegment> ExtractPlanes(const PointList& points, const Eigen::Vector3d& up,

@@ -62,6 +62,11 @@ struct RayFan {
 RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
                 const FrontendConfig& config);
 
+/// Whether `point` lies inside the fan's visibility polygon (cast from `position`): nearer than
+/// the wall its ray ends on, less `margin`. A ray that ends on nothing sees everything.
+bool InFan(const RayFan& fan, const Eigen::Vector2d& position, const Eigen::Vector2d& point,
+           double margin);
+
 /// How many rays of the fan hit each wall (indexed like the walls).
 std::vector<int> CountHits(const RayFan& fan, size_t num_walls);
 

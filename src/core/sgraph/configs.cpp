@@ -69,6 +69,8 @@ std::string FrontendConfig::Validate() const {
   c.NonNegative("wall_min_rise", wall_min_rise);
   c.Range("sensor_max_elevation_deg", sensor_max_elevation_deg, 0.0, 89.0);
   c.Positive("segment_gap", segment_gap);
+  c.Range("wall_normal_cell", wall_normal_cell, 0.01, 5.0);
+  c.Range("wall_normal_max_angle_deg", wall_normal_max_angle_deg, 1.0, 90.0);
   c.Positive("point_sigma", point_sigma);
   c.Range("max_effective_points", max_effective_points, 3, 1e7);
   c.Range("floor_max_covered", floor_max_covered, 0.0, 1.0);

@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "is_graphs/sgraph/floor_check.h"
+#include "is_graphs/sgraph/local_surface.h"
 #include "is_graphs/sgraph/plane_fit.h"
 #include "is_graphs/sgraph/plane_segments.h"
 
@@ -153,6 +155,11 @@ std::vector<PlaneSegment> ExtractPlanes(const PointList& points, const Eigen::Ve
     }
   }
 
+  // Inliers that only pass through a wall's distance band (a perpendicular wall at a corner, a
+  // door's reveal) would tilt it: they are dropped by the shape of the cloud around them.
+  const bool check_surfaces = config.wall_normal_max_angle_deg < 90.0;
+  std::optional<LocalSurfaces> surfaces;
+  if (check_surfaces) surfaces.emplace(points, config.wall_normal_cell);
   int walls = 0;
   for (int attempt = 0; attempt < 2 * config.max_planes && walls < config.max_planes; ++attempt) {
     const auto candidates = remaining([](size_t) { return true; });
@@ -167,9 +174,15 @@ std::vector<PlaneSegment> ExtractPlanes(const PointList& points, const Eigen::Ve
     if (along.norm() < 1e-6) continue;
     for (const auto& part :
          SplitCoplanarSegments(points, inliers, along.normalized(), config.segment_gap)) {
-      if (part.size() < static_cast<size_t>(config.min_plane_points) / 2) continue;
+      // Fitted, measured and checked for length on the points on the wall alone: a piece that
+      // is mostly corner is no wall (its extent stops short of a corner by up to a cell or two).
+      const std::vector<int> on_plane =
+          check_surfaces ? surfaces->OnPlane(part, whole->plane.normal,
+                                             config.wall_normal_max_angle_deg * kDegToRad)
+                         : part;
+      if (on_plane.size() < static_cast<size_t>(config.min_plane_points) / 2) continue;
       PlaneSegment segment;
-      if (MakeSegment(points, part, false, up, sensor_origin, config, segment)) {
+      if (MakeSegment(points, on_plane, false, up, sensor_origin, config, segment)) {
         segments.push_back(segment);
         ++walls;
       }

@@ -190,6 +190,17 @@ bool InOpening(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position
   return false;
 }
 
+bool InFan(const RayFan& fan, const Eigen::Vector2d& position, const Eigen::Vector2d& point,
+           double margin) {
+  const int n = static_cast<int>(fan.directions.size());
+  if (n == 0) return false;
+  const Eigen::Vector2d v = point - position;
+  double a = std::atan2(v.y(), v.x());
+  if (a < 0.0) a += 2.0 * M_PI;
+  const int k = static_cast<int>(std::lround(a / (2.0 * M_PI) * n)) % n;
+  return v.norm() < fan.range[k] - margin;
+}
+
 RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position,
                 const FrontendConfig& config) {
   RayFan fan;

@@ -53,7 +53,6 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
   std::optional<RoomCandidate> candidate = DetectRoom(walls, position, fan, frontend_);
   if (!candidate) candidate = DetectCorridor(walls, position, fan, frontend_);
   if (!candidate) return;
-
   // The same room seen again: shares two walls and lies near; a corridor closed later becomes
   // a room.
   for (size_t r = 0; r < rooms_.size(); ++r) {
@@ -86,10 +85,12 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
     // Or one nested in the other, sharing three walls: a part of a four-wall room closed off by
     // a partition that leaves a wide passage (the room was accepted with that wall inside it),
     // or a four-wall room and the larger space it opens onto without a wall between (an
-    // open-plan hall, kitchen and living room seen from the hall).
+    // open-plan hall, kitchen and living room seen from the hall). Inside a polygonal view is
+    // inside what the rays saw (its walls need not enclose a convex area).
     const bool nested =
         !seen_before && !same_space && shared >= 3 &&
-        (InsideWalls(room.planes, candidate->center) || InsideWalls(candidate->walls, room.center));
+        (InsideWalls(room.planes, candidate->center) ||
+         InsideWalls(candidate->walls, room.center) || InFan(fan, position, room.center, 0.3));
     if (!seen_before && !same_space && !nested) continue;
     // A corridor closed later, or a polygonal room (a doorway's far wall counted in) seen
     // later as the four-wall room it is, takes the better view.

@@ -4,11 +4,13 @@
 //
 //   bench_sgraph BAG [--building FILE.ifc|.agraph.json] [--storey S] [--keyframe-distance M]
 //                    [--min-plane-points N] [--max-iterations N] [--max-solver-time S]
+//                    [--wall-normal-cell M] [--wall-normal-max-angle-deg A] [--explain-plane ID]
 //
 // Quality: APE after evo's alignment (Umeyama SE(3), no scale) and after the gravity-aware one
 // (yaw + translation: both frames are z-up); planes and rooms are compared after the latter.
-// Wall planes lying on a window or door of the building's mesh (set back in the wall) are
-// counted apart: the A-Graph has no surface for them.
+// Planes lying on a door, window, stair, railing or piece of furniture of the building's mesh
+// (not on a wall) are counted and listed apart: the A-Graph has no surface for them.
+// --explain-plane lists each observation of a plane in the BIM frame (debugging a bad plane).
 //
 // Optimizations run synchronously after each keyframe here (the node runs them on a worker
 // thread): scan latency excludes them, the real-time factor includes them.
@@ -51,8 +53,39 @@ using bag_replay::Percentile;
 
 int Usage() {
   std::cerr << "usage: bench_sgraph BAG [--building FILE] [--storey S] [--keyframe-distance M]"
-               " [--min-plane-points N] [--max-iterations N] [--max-solver-time S]\n";
+               " [--min-plane-points N] [--max-iterations N] [--max-solver-time S]"
+               " [--wall-normal-cell M] [--wall-normal-max-angle-deg A] [--explain-plane ID]\n";
   return 2;
+}
+
+// Each observation of plane `id`: where the keyframe was (truth), the observed plane put in the
+// BIM frame by the true keyframe pose (its own error, free of the estimate's) and by the estimate.
+void ExplainPlane(const sgraph::SGraph& graph, int id, const Eigen::Isometry3d& bim_T_map,
+                  const std::vector<sgraph::StampedPose>& truth) {
+  const auto p = std::find_if(graph.planes.begin(), graph.planes.end(),
+                              [&](const sgraph::Plane& q) { return q.id == id; });
+  if (p == graph.planes.end()) {
+    std::printf("plane %d: not in the graph\n", id);
+    return;
+  }
+  const geometry::Plane mapped = p->plane.Transformed(bim_T_map);
+  const auto yaw = [](const Eigen::Vector3d& n) { return std::atan2(n.y(), n.x()) * 180.0 / M_PI; };
+  std::printf("plane %d in BIM: normal yaw %.2f deg, d %.3f\n", id, yaw(mapped.normal), mapped.d);
+  for (const auto& o : graph.observations) {
+    if (o.plane != id) continue;
+    const auto k = std::find_if(graph.keyframes.begin(), graph.keyframes.end(),
+                                [&](const sgraph::Keyframe& q) { return q.id == o.keyframe; });
+    const auto t = sgraph::TruthAt(truth, k->stamp);
+    if (!t) continue;
+    const geometry::Plane by_truth = o.local.Transformed(*t);
+    const geometry::Plane by_est = o.local.Transformed(bim_T_map * k->pose);
+    std::printf(
+        "  kf %d at (%.2f, %.2f): by truth yaw %.2f d %.3f; by estimate yaw %.2f d %.3f; "
+        "info diag %.3g %.3g %.3g\n",
+        o.keyframe, t->translation().x(), t->translation().y(), yaw(by_truth.normal), by_truth.d,
+        yaw(by_est.normal), by_est.d, o.information(0, 0), o.information(1, 1),
+        o.information(2, 2));
+  }
 }
 
 }  // namespace
@@ -63,6 +96,7 @@ int main(int argc, char** argv) {
   sgraph::FrontendConfig frontend;
   sgraph::BackendConfig backend;
   int min_plane_points_eval = 200;
+  std::vector<int> explain;  // --explain-plane: plane ids whose observations are listed
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return Usage();
@@ -78,6 +112,12 @@ int main(int argc, char** argv) {
       backend.max_iterations = std::stoi(argv[++i]);
     else if (a == "--max-solver-time")
       backend.max_solver_time = std::stod(argv[++i]);
+    else if (a == "--wall-normal-max-angle-deg")
+      frontend.wall_normal_max_angle_deg = std::stod(argv[++i]);
+    else if (a == "--wall-normal-cell")
+      frontend.wall_normal_cell = std::stod(argv[++i]);
+    else if (a == "--explain-plane")
+      explain.push_back(std::stoi(argv[++i]));
     else
       return Usage();
   }
@@ -176,19 +216,29 @@ int main(int argc, char** argv) {
     if (m.ok()) mesh = std::move(m.value());
   }
   const auto planes = sgraph::EvaluatePlanes(graph, building, bim_T_map, min_plane_points_eval);
-  int matched = 0, good = 0, openings = 0;
+  int matched = 0, good = 0, others = 0;
   std::vector<double> dist, ang;
-  std::string off;  // the planes outside 5 cm / 1 deg, one line each
+  std::string off;    // the wall planes outside 5 cm / 1 deg, one line each
+  std::string other;  // the planes on other elements, one line each
   for (const auto& p : planes) {
     if (p.surface < 0) continue;
     const auto it = std::find_if(graph.planes.begin(), graph.planes.end(),
                                  [&](const sgraph::Plane& q) { return q.id == p.plane; });
     const std::string cls = mesh ? sgraph::PlaneSupportClass(*it, bim_T_map, *mesh, 0.04) : "";
-    if (mesh) {
-      if (cls == "IfcWindow" || cls == "IfcDoor") {
-        ++openings;
-        continue;
-      }
+    const Eigen::Vector3d a = bim_T_map * Eigen::Vector3d(it->start.x(), it->start.y(), 0.0);
+    const Eigen::Vector3d b = bim_T_map * Eigen::Vector3d(it->end.x(), it->end.y(), 0.0);
+    char line[256];
+    std::snprintf(line, sizeof(line),
+                  "  plane %d (%d points, z %.2f..%.2f) from (%.2f, %.2f) to (%.2f, %.2f) near "
+                  "surface %d: %.3f m, %.2f deg (on %s)\n",
+                  p.plane, it->num_points, it->z_min, it->z_max, a.x(), a.y(), b.x(), b.y(),
+                  p.surface, p.distance, p.angle_deg, cls.empty() ? "-" : cls.c_str());
+    // On a door, window, stair, railing or furniture of the mesh (not on a wall): the A-Graph
+    // has no surface for it. Planes on nothing of the mesh (clutter, a wall moved on site) count.
+    if (!cls.empty() && cls.rfind("IfcWall", 0) != 0) {
+      ++others;
+      other += line;
+      continue;
     }
     ++matched;
     dist.push_back(p.distance);
@@ -197,23 +247,18 @@ int main(int argc, char** argv) {
       ++good;
       continue;
     }
-    const Eigen::Vector3d a = bim_T_map * Eigen::Vector3d(it->start.x(), it->start.y(), 0.0);
-    const Eigen::Vector3d b = bim_T_map * Eigen::Vector3d(it->end.x(), it->end.y(), 0.0);
-    char line[256];
-    std::snprintf(line, sizeof(line),
-                  "  plane %d (%d points, z %.2f..%.2f) from (%.2f, %.2f) to (%.2f, %.2f) on "
-                  "surface %d: %.3f m, %.2f deg (on %s)\n",
-                  p.plane, it->num_points, it->z_min, it->z_max, a.x(), a.y(), b.x(), b.y(),
-                  p.surface, p.distance, p.angle_deg, cls.empty() ? "-" : cls.c_str());
     off += line;
   }
   std::printf(
-      "wall planes (>= %d points): %zu, on windows/doors: %d, on a BIM wall-surface: %d, "
+      "wall planes (>= %d points): %zu, on other elements: %d, on a BIM wall-surface: %d, "
       "within 5 cm and 1 deg: %d; distance median %.3f max %.3f m, angle median %.2f "
       "max %.2f deg\n",
-      min_plane_points_eval, planes.size(), openings, matched, good, Percentile(dist, 0.5),
+      min_plane_points_eval, planes.size(), others, matched, good, Percentile(dist, 0.5),
       Percentile(dist, 1.0), Percentile(ang, 0.5), Percentile(ang, 1.0));
   std::printf("%s", off.c_str());
+  if (others > 0)
+    std::printf("on other elements (doors, windows, stairs, furniture):\n%s", other.c_str());
+  for (int id : explain) ExplainPlane(graph, id, bim_T_map, truth);
   const auto rooms = sgraph::EvaluateRooms(graph, building, truth, bim_T_map);
   std::printf(
       "rooms: walked through %d, found %d, detected %d, false %d (of which duplicates %d)\n",
