@@ -43,7 +43,6 @@ class LocalSurfaces {
     Shape shape;
     Eigen::Vector3i index{Eigen::Vector3i::Zero()};
   };
-  static std::uint64_t Key(const Eigen::Vector3i& index);
   const Shape& ShapeOf(Cell& cell);
 
   std::unordered_map<std::uint64_t, Cell> cells_;

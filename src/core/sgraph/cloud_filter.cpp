@@ -21,6 +21,13 @@ PointList RangeFilter(const PointList& points, const Eigen::Vector3f& origin, do
   return out;
 }
 
+std::uint64_t VoxelKey(const Eigen::Vector3i& voxel) {
+  const auto part = [](int v) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + (1 << 20)) & 0x1FFFFF;
+  };
+  return (part(voxel.x()) << 42) | (part(voxel.y()) << 21) | part(voxel.z());
+}
+
 PointList VoxelFilter(const PointList& points, double voxel_size) {
   // A hash grid (PCL's VoxelGrid needs a copy into pcl::PointCloud and overflows its index
   // on large extents; this is equivalent and allocation-light).
@@ -35,12 +42,7 @@ PointList VoxelFilter(const PointList& points, double voxel_size) {
   order.reserve(points.size() / 2 + 1);
   for (const auto& p : points) {
     if (!p.allFinite()) continue;
-    const auto key = [&](float v) {
-      return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v * inv)) +
-                                        (1 << 20)) &
-             0x1FFFFF;
-    };
-    const std::uint64_t k = (key(p.x()) << 42) | (key(p.y()) << 21) | key(p.z());
+    const std::uint64_t k = VoxelKey((p * inv).array().floor().cast<int>());
     auto [it, inserted] = cells.try_emplace(k);
     if (inserted) order.push_back(k);
     it->second.sum += p;

@@ -3,6 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
+#include "is_graphs/sgraph/cloud_filter.h"
+
 namespace is_graphs {
 namespace sgraph {
 namespace {
@@ -13,13 +15,6 @@ constexpr double kLinearRatio = 0.05;
 
 }  // namespace
 
-std::uint64_t LocalSurfaces::Key(const Eigen::Vector3i& index) {
-  const auto part = [](int v) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + (1 << 20)) & 0x1FFFFF;
-  };
-  return (part(index.x()) << 42) | (part(index.y()) << 21) | part(index.z());
-}
-
 LocalSurfaces::LocalSurfaces(const PointList& points, double cell_size)
     : cell_of_point_(points.size(), nullptr) {
   const double inv = 1.0 / cell_size;
@@ -28,7 +23,7 @@ LocalSurfaces::LocalSurfaces(const PointList& points, double cell_size)
     const Eigen::Vector3d p = points[i].cast<double>();
     if (!p.allFinite()) continue;
     const Eigen::Vector3i index((p * inv).array().floor().cast<int>());
-    Cell& c = cells_[Key(index)];
+    Cell& c = cells_[VoxelKey(index)];
     c.index = index;
     ++c.moments.count;
     c.moments.sum += p;
@@ -45,7 +40,7 @@ const LocalSurfaces::Shape& LocalSurfaces::ShapeOf(Cell& cell) {
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
-        const auto it = cells_.find(Key(cell.index + Eigen::Vector3i(dx, dy, dz)));
+        const auto it = cells_.find(VoxelKey(cell.index + Eigen::Vector3i(dx, dy, dz)));
         if (it == cells_.end()) continue;
         m.count += it->second.moments.count;
         m.sum += it->second.moments.sum;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 namespace is_graphs {
 namespace sgraph {
@@ -44,6 +45,12 @@ constexpr double kMinDividing = 0.5;     // m: the least of a wall seen across a
 
 Eigen::Vector2d Along(const Wall2D& w) { return Eigen::Vector2d(-w.normal.y(), w.normal.x()); }
 
+/// The interval [lo, hi] of `w`'s seen extent along `along`.
+std::pair<double, double> SeenExtent(const Wall2D& w, const Eigen::Vector2d& along) {
+  const double a = along.dot(w.start), b = along.dot(w.end);
+  return {std::min(a, b), std::max(a, b)};
+}
+
 /// Where the lines of walls p and q cross.
 Eigen::Vector2d Corner(const Wall2D& p, const Wall2D& q) {
   Eigen::Matrix2d m;
@@ -60,8 +67,7 @@ double LargestGap(const std::vector<Wall2D>& walls, const Wall2D& line, double s
   std::vector<std::pair<double, double>> covered;
   for (const Wall2D& other : walls) {
     if (!SameLine(other, line)) continue;
-    double lo = along.dot(other.start), hi = along.dot(other.end);
-    if (lo > hi) std::swap(lo, hi);
+    const auto [lo, hi] = SeenExtent(other, along);
     covered.emplace_back(lo - slack, hi + slack);
   }
   std::sort(covered.begin(), covered.end());
@@ -182,8 +188,7 @@ bool InOpening(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position
   for (const Wall2D& w : walls) {
     if (std::abs(w.normal.dot(position) - w.d) > config.room_opening_band) continue;
     const Eigen::Vector2d along = Along(w);
-    double lo = along.dot(w.start), hi = along.dot(w.end);
-    if (lo > hi) std::swap(lo, hi);
+    const auto [lo, hi] = SeenExtent(w, along);
     const double s = along.dot(position);
     if (s >= lo - config.room_gap_margin && s <= hi + config.room_gap_margin) return true;
   }
@@ -223,8 +228,7 @@ RayFan CastRays(const std::vector<Wall2D>& walls, const Eigen::Vector2d& positio
     const double front = wall.normal.dot(position) - wall.d;
     if (front < 0.1 || front > config.room_max_range) continue;  // faces away, or too far
     const Eigen::Vector2d along = Along(wall);
-    double lo = along.dot(wall.start), hi = along.dot(wall.end);
-    if (lo > hi) std::swap(lo, hi);
+    const auto [lo, hi] = SeenExtent(wall, along);
     for (int k = 0; k < n; ++k) {
       const double cosine = wall.normal.dot(fan.directions[k]);
       if (cosine > -1e-6) continue;  // parallel or away

@@ -31,6 +31,7 @@ bool SGraphBuilder::InsideWalls(const std::vector<int>& wall_ids,
 }
 
 void SGraphBuilder::UpdateRooms(int keyframe) {
+  constexpr double kInView = 0.3;  // m: a room centre in view lies this far short of a wall
   const Eigen::Isometry3d& pose = keyframes_[keyframe].pose;
   const double z = pose.translation().z();
   std::vector<Wall2D> walls;
@@ -90,7 +91,7 @@ void SGraphBuilder::UpdateRooms(int keyframe) {
     const bool nested =
         !seen_before && !same_space && shared >= 3 &&
         (InsideWalls(room.planes, candidate->center) ||
-         InsideWalls(candidate->walls, room.center) || InFan(fan, position, room.center, 0.3));
+         InsideWalls(candidate->walls, room.center) || InFan(fan, position, room.center, kInView));
     if (!seen_before && !same_space && !nested) continue;
     // A corridor closed later, or a polygonal room (a doorway's far wall counted in) seen
     // later as the four-wall room it is, takes the better view.
