@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """`make evaluate`: the localization on every full-length scenario bag against ground truth.
 
-For each scenario (bags/D*.yaml and bags/R*.yaml, not *_short; an R scenario whose full bag is
+For each scenario (bags/D*, R* and H*.yaml, not *_short; an R scenario whose full bag is
 absent falls back to its _short bag, and says so; a missing D bag is listed as missing), runs
 replay_pipeline (the core the nodes run, synchronously, without ROS transport: deterministic)
 and compares with the ground truth, WITHOUT alignment (evo):
@@ -181,7 +181,7 @@ def evaluate_scenario(name, yaml_path, bag, note, replay, out_dir):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("scenarios", nargs="*", help="scenario YAMLs (default: bags/D*, R*)")
+    parser.add_argument("scenarios", nargs="*", help="scenario YAMLs (default: bags/D*, R*, H*)")
     parser.add_argument("--out", default=os.path.join(REPO, ".ws", "evaluate"))
     parser.add_argument("--replay",
                         default=os.path.join(REPO, ".ws", "devel", "lib", "is_graphs",
@@ -190,7 +190,7 @@ def main():
     from evaluation_report import write_reports
 
     yamls = args.scenarios or sorted(
-        y for pattern in ("D*.yaml", "R*.yaml")
+        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml")
         for y in glob.glob(os.path.join(REPO, "bags", pattern)) if not y.endswith("_short.yaml"))
     if not os.access(args.replay, os.X_OK):
         print(f"evaluate: error: {args.replay} not built (make build)", file=sys.stderr)

@@ -40,6 +40,9 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "lever_arm_slack", c.lever_arm_slack);
   ros_params::Read(pnh, "quality_sigma", c.quality_sigma);
   ros_params::Read(pnh, "corridor_weight", c.corridor_weight);
+  ros_params::Read(pnh, "wall_crossing_penalty", c.wall_crossing_penalty);
+  ros_params::Read(pnh, "door_margin", c.door_margin);
+  ros_params::Read(pnh, "max_path_step", c.max_path_step);
   ros_params::Read(pnh, "ambiguity_margin", c.ambiguity_margin);
   ros_params::Read(pnh, "cluster_yaw_deg", c.cluster_yaw_deg);
   ros_params::Read(pnh, "cluster_translation", c.cluster_translation);

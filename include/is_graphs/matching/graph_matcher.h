@@ -11,6 +11,7 @@
 #include "is_graphs/matching/hypothesis_scoring.h"
 #include "is_graphs/matching/matcher_config.h"
 #include "is_graphs/matching/room_descriptor.h"
+#include "is_graphs/matching/wall_crossings.h"
 #include "is_graphs/sgraph/sgraph.h"
 
 namespace is_graphs {
@@ -33,7 +34,9 @@ struct MatchStats {
 ///     join in order of distance when a room pair of theirs is consistent with the seed pair
 ///     (pairwise, CLIPPER-style) and with the motion refitted so far; finally re-checked under
 ///     the motion fitted to everything, and scored by global affinity;
-///  3. decision: hypotheses implying the same motion merged, the best score cluster
+///  3. score: the affinity less what contradicts a hypothesis: BIM walls the robot's walked
+///     path (its keyframes) crosses under its motion away from every doorway;
+///  4. decision: hypotheses implying the same motion merged, the best score cluster
 ///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide).
 /// Incremental: an S-room unchanged since the last call keeps its candidates, and the last best
 /// motion is grown first. Not thread-safe; one matcher per thread.
@@ -72,6 +75,7 @@ class GraphMatcher {
   bool has_agraph_{false};
   std::string a_sha256_;
   std::vector<RoomDescriptor> a_rooms_;
+  WallCrossings crossings_;
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
   MatchStats stats_;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "is_graphs/matching/candidate_graph.h"
@@ -20,10 +21,14 @@ struct MemberPair {
   PairEvaluation evaluation;
 };
 
-/// A global candidate: room pairs combined bottom-up under one motion, and its global affinity.
+/// A global candidate: room pairs combined bottom-up under one motion, and its score: the
+/// global affinity of its pairs less what contradicts it.
 struct Hypothesis {
-  Pose2 pose;  // bim_T_map
+  Pose2 pose;      // bim_T_map
+  int storey{-1};  // the A-Graph storey of its pairs (a hypothesis keeps to one)
   std::vector<MemberPair> members;
+  double affinity{0.0};  // GlobalAffinity of the members
+  int crossings{-1};     // walls the walked path crosses under `pose`; -1: not evaluated
   double score{0.0};
   int rooms{0};  // matched S-rooms
 };
@@ -31,6 +36,16 @@ struct Hypothesis {
 /// Σ over the pairs of weight × quality (weight 1 for a room, corridor_weight for a pair that
 /// fixes the motion only across an axis).
 double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfig& config);
+
+/// Scores every hypothesis: affinity - wall_crossing_penalty x crossings(h), the walls the
+/// walked path crosses under its motion. crossings(h) is evaluated best first and only while it
+/// can still change the decision: a hypothesis whose affinity is more than ambiguity_margin
+/// below the best score so far can neither win nor compete, and keeps crossings = -1.
+/// (Penalising S-rooms a hypothesis pairs with nothing was tried and left out: it widened the
+/// gaps between partial hypotheses of a mirror image until one became UNIQUE.)
+void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
+                     const std::function<int(const Hypothesis&)>& crossings,
+                     const MatcherConfig& config);
 
 /// The motion fitted to all surface pairs of the members and the centres of the full-rank ones.
 RigidFit FitMembers(const std::vector<MemberPair>& members,
@@ -43,9 +58,10 @@ bool SameMotion(const Pose2& a, const Pose2& b, const std::vector<Eigen::Vector2
                 const MatcherConfig& config);
 
 /// The decision over a set of hypotheses: sorted by score, merged where they imply the same
-/// motion, the best cluster = those within ambiguity_margin of the best. UNIQUE when it holds
-/// one hypothesis that pairs at least min_matched_rooms and min_matched_fraction of the
-/// `s_room_count` rooms; NONE when there is no hypothesis; else AMBIGUOUS.
+/// motion on the same storey (storeys with one plan imply one planar motion: they compete), the
+/// best cluster = those within ambiguity_margin of the best. UNIQUE when it holds one hypothesis
+/// that pairs at least min_matched_rooms and min_matched_fraction of the `s_room_count` rooms; NONE
+/// when there is no hypothesis; else AMBIGUOUS.
 struct Decision {
   MatchStatus status{MatchStatus::kNone};
   int best{-1};                  // index into the (sorted) hypotheses

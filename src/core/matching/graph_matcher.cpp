@@ -32,6 +32,7 @@ GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {}
 
 std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   a_rooms_ = DescribeARooms(graph);
+  crossings_ = WallCrossings(graph, config_.door_margin);
   a_sha256_ = graph.source.sha256;
   has_agraph_ = true;
   cache_.clear();
@@ -109,7 +110,8 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
   if (std::none_of(h.members.begin(), h.members.end(),
                    [](const MemberPair& m) { return m.full_rank; }))
     h.members.clear();
-  h.score = GlobalAffinity(h.members, config_);
+  h.storey = storey;
+  h.affinity = h.score = GlobalAffinity(h.members, config_);
   h.rooms = static_cast<int>(h.members.size());
   return h;
 }
@@ -165,6 +167,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
                              [&](const MemberPair& m) {
                                return m.s_room == seed->s_room && m.a_room == seed->a_room;
                              }) &&
+                 h.storey == a_rooms_[seed->a_room].storey &&
                  SameMotion(h.pose, seed->pose, {s_rooms[seed->s_room].centre}, config_);
         });
     if (covered) continue;
@@ -172,7 +175,13 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     hypotheses.push_back(Grow(seed->pose, seed, s_rooms, candidates));
   }
 
-  // 3. Decision.
+  // 3. Scores: the pairs' affinity less the walls the walked path crosses under each motion.
+  const std::vector<PathStep> path = WalkedPath(graph, config_.max_path_step);
+  ScoreHypotheses(
+      hypotheses, [&](const Hypothesis& h) { return crossings_.Count(path, h.pose, h.storey); },
+      config_);
+
+  // 4. Decision.
   const Decision decision = Decide(hypotheses, s_points, static_cast<int>(s_rooms.size()), config_);
   stats_.hypotheses = static_cast<int>(hypotheses.size());
   out.status = decision.status;

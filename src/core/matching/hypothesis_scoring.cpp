@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 namespace is_graphs {
@@ -12,6 +13,28 @@ double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfi
   for (const auto& m : members)
     score += (m.full_rank ? 1.0 : config.corridor_weight) * m.evaluation.quality;
   return score;
+}
+
+void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
+                     const std::function<int(const Hypothesis&)>& crossings,
+                     const MatcherConfig& config) {
+  std::vector<int> order;
+  for (size_t k = 0; k < hypotheses.size(); ++k) {
+    Hypothesis& h = hypotheses[k];
+    h.crossings = -1;
+    h.score = h.affinity;
+    if (!h.members.empty()) order.push_back(static_cast<int>(k));
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int x, int y) { return hypotheses[x].score > hypotheses[y].score; });
+  double best = -std::numeric_limits<double>::infinity();
+  for (int k : order) {
+    Hypothesis& h = hypotheses[k];
+    if (h.score < best - config.ambiguity_margin) break;  // sorted: no later one can matter
+    h.crossings = config.wall_crossing_penalty > 0.0 ? crossings(h) : 0;
+    h.score -= config.wall_crossing_penalty * h.crossings;
+    best = std::max(best, h.score);
+  }
 }
 
 RigidFit FitMembers(const std::vector<MemberPair>& members,
@@ -62,7 +85,8 @@ Decision Decide(std::vector<Hypothesis>& hypotheses, const std::vector<Eigen::Ve
   std::vector<int> clusters;
   for (size_t i = 0; i < hypotheses.size(); ++i) {
     const bool known = std::any_of(clusters.begin(), clusters.end(), [&](int c) {
-      return SameMotion(hypotheses[c].pose, hypotheses[i].pose, s_points, config);
+      return hypotheses[c].storey == hypotheses[i].storey &&
+             SameMotion(hypotheses[c].pose, hypotheses[i].pose, s_points, config);
     });
     if (!known) clusters.push_back(static_cast<int>(i));
   }

@@ -1,0 +1,108 @@
+#include "is_graphs/matching/wall_crossings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace is_graphs {
+namespace matching {
+namespace {
+
+constexpr double kCell = 1.0;  // m
+
+long long CellKey(long long ix, long long iy) { return (ix << 32) ^ (iy & 0xffffffffLL); }
+
+long long CellOf(double v) { return static_cast<long long>(std::floor(v / kCell)); }
+
+double Cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+  return u.x() * v.y() - u.y() * v.x();
+}
+
+/// The point where segments p0-p1 and q0-q1 cross, if they do (touching ends count).
+bool Intersect(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const Eigen::Vector2d& q0,
+               const Eigen::Vector2d& q1, Eigen::Vector2d* at) {
+  const Eigen::Vector2d r = p1 - p0, s = q1 - q0;
+  const double denom = Cross(r, s);
+  if (std::abs(denom) < 1e-12) return false;  // parallel: walking along a wall crosses nothing
+  const double u = Cross(q0 - p0, s) / denom;
+  const double v = Cross(q0 - p0, r) / denom;
+  if (u < 0.0 || u > 1.0 || v < 0.0 || v > 1.0) return false;
+  *at = p0 + u * r;
+  return true;
+}
+
+}  // namespace
+
+std::vector<PathStep> WalkedPath(const sgraph::SGraph& graph, double max_step) {
+  std::map<int, Eigen::Vector2d> position;
+  for (const auto& k : graph.keyframes)
+    if (k.pose.translation().allFinite()) position.emplace(k.id, k.pose.translation().head<2>());
+  std::vector<PathStep> steps;
+  for (const auto& k : graph.keyframes) {
+    const auto it = position.find(k.id), prev = position.find(k.previous);
+    if (k.previous < 0 || it == position.end() || prev == position.end()) continue;
+    if ((it->second - prev->second).norm() > max_step) continue;
+    steps.emplace_back(prev->second, it->second);
+  }
+  return steps;
+}
+
+WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin) {
+  for (const auto& s : graph.surfaces) {
+    if (!s.start.allFinite() || !s.end.allFinite() || s.Length() < 1e-6) continue;
+    Storey& storey = storeys_[s.storey];
+    const int index = static_cast<int>(storey.surfaces.size());
+    storey.surfaces.push_back({s.start, s.end, s.wall >= 0 ? s.wall : -1 - s.id});
+    // Every cell the surface's segment passes through (sampled finer than a cell).
+    std::set<long long> keys;
+    const int samples = 1 + static_cast<int>(std::ceil(4.0 * s.Length() / kCell));
+    for (int i = 0; i <= samples; ++i) {
+      const Eigen::Vector2d p = s.start + (s.end - s.start) * (static_cast<double>(i) / samples);
+      keys.insert(CellKey(CellOf(p.x()), CellOf(p.y())));
+    }
+    for (long long key : keys) storey.cells[key].push_back(index);
+  }
+  for (const auto& d : graph.doorways) {
+    if (!d.position.allFinite() || !std::isfinite(d.width)) continue;
+    storeys_[d.storey].doors.push_back(
+        {d.position.head<2>(), 0.5 * std::max(d.width, 0.0) + door_margin});
+  }
+}
+
+bool WallCrossings::NearDoor(const Storey& storey, const Eigen::Vector2d& p) const {
+  return std::any_of(storey.doors.begin(), storey.doors.end(),
+                     [&](const Door& d) { return (d.position - p).norm() <= d.reach; });
+}
+
+int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, int storey) const {
+  const auto found = storeys_.find(storey);
+  if (found == storeys_.end()) return 0;
+  const Storey& s = found->second;
+  std::set<int> crossed;
+  std::vector<int> candidates;
+  for (const auto& [m0, m1] : steps) {
+    const Eigen::Vector2d p0 = pose.Apply(m0), p1 = pose.Apply(m1);
+    candidates.clear();
+    for (long long ix = CellOf(std::min(p0.x(), p1.x())); ix <= CellOf(std::max(p0.x(), p1.x()));
+         ++ix)
+      for (long long iy = CellOf(std::min(p0.y(), p1.y())); iy <= CellOf(std::max(p0.y(), p1.y()));
+           ++iy) {
+        const auto cell = s.cells.find(CellKey(ix, iy));
+        if (cell != s.cells.end())
+          candidates.insert(candidates.end(), cell->second.begin(), cell->second.end());
+      }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    for (int i : candidates) {
+      const Surface& surface = s.surfaces[i];
+      Eigen::Vector2d at;
+      if (crossed.count(surface.wall) || !Intersect(p0, p1, surface.a, surface.b, &at)) continue;
+      if (!NearDoor(s, at)) crossed.insert(surface.wall);
+    }
+  }
+  return static_cast<int>(crossed.size());
+}
+
+}  // namespace matching
+}  // namespace is_graphs
