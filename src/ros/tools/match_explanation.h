@@ -1,7 +1,8 @@
 // replay_pipeline --explain: how the S-Graph's rooms relate to the BIM's under the true motion
 // (from the bag's ground truth): for each S-room, the A-room it lies in, how its planes fit that
 // room, and the matcher's local candidates. The question it answers: why did matching not
-// become UNIQUE (a false S-room, a room whose planes do not fit, a missing candidate).
+// become UNIQUE (a false S-room, a room whose planes do not fit, a missing candidate, or a
+// competing hypothesis: the decision on the final S-Graph is printed with each competitor).
 // With IS_GRAPHS_EXPLAIN_PLANES set, each S-room's planes (in B) and its A-room's surfaces too,
 // and at the end every mapped wall plane in B (with its extent).
 #pragma once
@@ -14,6 +15,7 @@
 #include "is_graphs/agraph/agraph.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/candidate_graph.h"
+#include "is_graphs/matching/graph_matcher.h"
 #include "is_graphs/matching/room_descriptor.h"
 #include "is_graphs/sgraph/evaluation.h"
 
@@ -77,6 +79,23 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
           name(cand.a_room).c_str(), cand.quality, cand.full_rank ? "full" : "axis", dyaw, dt);
     }
   }
+  // The decision on this S-Graph: the best hypothesis and those competing with it.
+  matching::GraphMatcher matcher(config);
+  matcher.SetAGraph(building);
+  const matching::GraphMatch m = matcher.Match(graph);
+  auto print = [&](const char* what, const Eigen::Isometry3d& pose, double score, int rooms) {
+    const Eigen::Vector3d h = geometry::ToXYYaw(pose);
+    const double off = (pose.translation() - traj.bim_T_map_gravity.translation()).norm();
+    std::printf(
+        "  %s B_x_M (%.2f, %.2f, %.1f deg), score %.3f, %d room pairs; %.2f m, %.1f deg "
+        "from the truth\n",
+        what, h.x(), h.y(), h.z() * 180 / M_PI, score, rooms, off,
+        std::abs(geometry::NormalizeAngle(h.z() - xi.z())) * 180 / M_PI);
+  };
+  std::printf("match of this S-Graph: %s\n", matching::ToString(m.status));
+  if (m.status != matching::MatchStatus::kNone)
+    print("best      ", m.bim_T_map, m.score, static_cast<int>(m.room_pairs.size()));
+  for (const auto& alt : m.alternatives) print("competitor", alt.bim_T_map, alt.score, alt.rooms);
   if (!std::getenv("IS_GRAPHS_EXPLAIN_PLANES")) return;
   for (const auto& p : graph.planes) {
     if (std::abs(p.plane.normal.z()) > 0.5) continue;  // the floor
