@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "is_graphs/agraph/ifc_conversion.h"
 #include "is_graphs/geometry/se3.h"
@@ -52,6 +55,28 @@ inline int RoomByName(const agraph::AGraph& g, const std::string& name) {
 }
 
 /// The motion is the true one (at every S-room) and every room pair is a true pair.
+/// The campaigns' buildings: the project's own and every IFC in ../shared/bim that converts.
+inline std::vector<std::pair<std::string, const agraph::AGraph*>> CampaignBuildings() {
+  std::vector<std::pair<std::string, const agraph::AGraph*>> buildings;
+  for (const char* name : {"office.ifc", "rotated.ifc", "large.ifc", "symmetric.ifc"}) {
+    std::string why;
+    if (const auto* g = LoadBuildingOnce(ProjectBim(name), &why)) buildings.emplace_back(name, g);
+  }
+  const std::string shared = IS_GRAPHS_SHARED_BIM_DIR;
+  if (std::filesystem::exists(shared)) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(shared))
+      if (e.path().extension() == ".ifc") files.push_back(e.path());
+    std::sort(files.begin(), files.end());  // directory order is not deterministic
+    for (const auto& f : files) {
+      std::string why;
+      if (const auto* g = LoadBuildingOnce(f.string(), &why))
+        buildings.emplace_back(f.filename().string(), g);
+    }
+  }
+  return buildings;
+}
+
 inline bool MatchIsCorrect(const matching::GraphMatch& m, const matching::SyntheticSGraph& s,
                            std::string* why = nullptr) {
   const Eigen::Isometry3d& truth = s.bim_T_map;

@@ -23,20 +23,7 @@ std::uint64_t CampaignSeed() {
 }
 
 TEST(MatchingCampaign, ThousandRandomTrialsWithoutAWrongUniqueMatch) {
-  std::vector<std::pair<std::string, const agraph::AGraph*>> buildings;
-  for (const char* name : {"office.ifc", "rotated.ifc", "large.ifc", "symmetric.ifc"}) {
-    std::string why;
-    if (const auto* g = testing::LoadBuildingOnce(testing::ProjectBim(name), &why))
-      buildings.emplace_back(name, g);
-  }
-  const std::string shared = IS_GRAPHS_SHARED_BIM_DIR;
-  if (std::filesystem::exists(shared))
-    for (const auto& e : std::filesystem::directory_iterator(shared)) {
-      std::string why;
-      if (e.path().extension() == ".ifc")
-        if (const auto* g = testing::LoadBuildingOnce(e.path().string(), &why))
-          buildings.emplace_back(e.path().filename().string(), g);
-    }
+  const auto buildings = testing::CampaignBuildings();
   if (buildings.empty()) GTEST_SKIP() << "no building could be loaded (converter missing?)";
 
   const std::uint64_t seed = CampaignSeed();

@@ -19,9 +19,9 @@ struct MatcherConfig {
   double quality_sigma{0.12};     // plane residual of a room pair -> quality exp(-r²/2σ²)
   double corridor_weight{0.75};   // weight of a corridor pair in the score (a room counts 1)
   // --- evidence beyond the pairs (the score of a hypothesis) ---
-  double wall_crossing_penalty{1.0};  // per BIM wall the walked path crosses under it
-  double door_margin{0.4};            // a crossing this far beyond a doorway's half-width
-  double max_path_step{1.5};          // longer keyframe steps (scan gaps) are not checked
+  double wall_crossing_penalty{0.25};  // per BIM wall the walked path crosses under it
+  double door_margin{0.4};             // a crossing this far beyond a doorway's half-width
+  double max_path_step{1.5};           // longer keyframe steps (scan gaps) are not checked
   // --- decision ---
   double ambiguity_margin{0.4};      // hypotheses scoring within this of the best compete
   double cluster_yaw_deg{3.0};       // hypotheses closer than this (and cluster_translation)

@@ -29,6 +29,17 @@ struct SyntheticSGraphConfig {
   int extra_planes{0};            // clutter planes added to random rooms
   int extra_rooms{0};             // rectangular rooms that are not in the BIM
   double split_probability{0.0};  // a surface bounding several rooms becomes one plane per room
+  // --- harsh (drawn from their own stream: the fields above give the same graph with or without)
+  int moved_walls{0};            // surfaces of the taken rooms built off the plan by ...
+  double moved_wall_min{0.25};   // ... at least this and at most moved_wall_max [m],
+  double moved_wall_max{0.35};   //     either way along the normal
+  int turned_walls{0};           // surfaces built turned about their middle by ...
+  double turned_wall_deg{15.0};  // ... up to this, either way
+  int missing_walls{0};          // surfaces of the taken rooms not built (no plane)
+  bool walk{false};              // keyframes along a walk through the rooms' doorways
+  double walk_spacing{0.8};      // m between keyframes
+  double walk_noise{0.0};        // σ of each keyframe's position, per axis [m]
+  int through_walls{0};          // walks through walls the plan has (openings it lacks)
   std::uint64_t seed{1};
 };
 
@@ -37,6 +48,9 @@ struct SyntheticSGraph {
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};
   std::map<int, int> room_truth;   // S-room id -> A-room id (extra rooms absent)
   std::map<int, int> plane_truth;  // S-plane id -> A-wall-surface id (clutter absent)
+  std::map<int, double> moved;     // A-surface id -> metres built off the plan (harsh)
+  std::map<int, double> turned;    // A-surface id -> radians built turned (harsh)
+  std::vector<int> missing;        // A-surface ids not built (harsh)
 };
 
 SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& building,

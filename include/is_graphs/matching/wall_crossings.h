@@ -20,8 +20,12 @@ using PathStep = std::pair<Eigen::Vector2d, Eigen::Vector2d>;
 std::vector<PathStep> WalkedPath(const sgraph::SGraph& graph, double max_step);
 
 /// The walked path as evidence against a hypothesis: a legged robot goes through doorways,
-/// never through walls. Under a motion bim_T_map, a step that crosses a wall-surface of the
-/// storey farther than `door_margin` beyond every doorway's half-width contradicts it. Walls
+/// never through walls. Under a motion bim_T_map, the path contradicts it where it goes through
+/// a wall of the storey: into the wall by one face and out by the other, neither farther than
+/// `door_margin` beyond a doorway's half-width, out within 1 m of where it went in. (Keyframes
+/// walking along a wall wander across its near face with the pose noise and back out, or out
+/// by the far face through the door, or, under a motion a little off, out by the far face metres
+/// on: none is a crossing. A wall of one face is crossed wherever the path crosses it.) Walls
 /// not built yet, or openings the A-Graph has no doorway for, make the true motion cross too:
 /// callers weigh the count, they do not veto on it. Surfaces are hashed into 1 m cells per
 /// storey, so a count costs O(steps), not O(steps x surfaces).
@@ -37,7 +41,9 @@ class WallCrossings {
  private:
   struct Surface {
     Eigen::Vector2d a, b;
-    int wall;  // the A-Graph wall, or -1 - surface id for a surface of no wall
+    Eigen::Vector2d normal;  // out of the wall's material
+    int wall;                // the A-Graph wall, or -1 - surface id for a surface of no wall
+    bool two_faced;          // its wall has another surface on the storey
   };
   struct Door {
     Eigen::Vector2d position;
@@ -47,6 +53,12 @@ class WallCrossings {
     std::vector<Surface> surfaces;
     std::vector<Door> doors;
     std::unordered_map<long long, std::vector<int>> cells;  // 1 m cell -> surface indices
+  };
+
+  struct Entry {
+    int surface;     // the face the path went in by
+    bool near_door;  // ... at a doorway
+    Eigen::Vector2d at;
   };
 
   bool NearDoor(const Storey& storey, const Eigen::Vector2d& p) const;

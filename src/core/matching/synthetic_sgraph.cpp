@@ -6,6 +6,7 @@
 #include <set>
 
 #include "is_graphs/geometry/se3.h"
+#include "is_graphs/matching/synthetic_walk.h"
 
 namespace is_graphs {
 namespace matching {
@@ -114,6 +115,34 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& b, const SyntheticSGra
   std::vector<double> deviation(b.surfaces.size(), 0.0);
   for (auto& d : deviation) d = config.bim_deviation * (2.0 * unit(rng) - 1.0);
 
+  // Harsh deviations, from their own stream: walls of the taken rooms moved, turned, missing.
+  std::mt19937_64 harsh(config.seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull);
+  std::uniform_real_distribution<double> harsh_unit(0.0, 1.0);
+  {
+    std::set<int> candidates;
+    for (int rid : rooms)
+      if (rid >= 0 && rid < static_cast<int>(b.rooms.size()))
+        for (int sid : b.rooms[rid].surfaces)
+          if (sid >= 0 && sid < static_cast<int>(b.surfaces.size())) candidates.insert(sid);
+    std::vector<int> order(candidates.begin(), candidates.end());
+    std::shuffle(order.begin(), order.end(), harsh);
+    size_t next = 0;
+    auto sign = [&] { return harsh_unit(harsh) < 0.5 ? -1.0 : 1.0; };
+    for (int k = 0; k < config.moved_walls && next < order.size(); ++k)
+      out.moved[order[next++]] =
+          sign() * (config.moved_wall_min +
+                    (config.moved_wall_max - config.moved_wall_min) * harsh_unit(harsh));
+    for (int k = 0; k < config.turned_walls && next < order.size(); ++k)
+      out.turned[order[next++]] =
+          sign() * config.turned_wall_deg * M_PI / 180.0 * harsh_unit(harsh);
+    for (int k = 0; k < config.missing_walls && next < order.size(); ++k)
+      out.missing.push_back(order[next++]);
+  }
+  auto lookup = [](const std::map<int, double>& m, int id) {
+    const auto it = m.find(id);
+    return it == m.end() ? 0.0 : it->second;
+  };
+
   // Noise turns a plane about the middle of the surface (where it was seen), not about the origin.
   // A long plane is fitted to points along all of it, so its direction is better known: the
   // turn is bounded so that its ends move by at most 10 cm.
@@ -142,13 +171,23 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& b, const SyntheticSGra
     sgraph::Plane p;
     p.id = next_plane;
     next_plane += 3;  // ids stable but not dense
-    const geometry::Plane built(s.plane.normal, s.plane.d + deviation[s.id]);
     const Eigen::Vector2d middle = 0.5 * (s.start + s.end);
-    p.plane = to_map(built, Eigen::Vector3d(middle.x(), middle.y(), 0.5 * (s.z_min + s.z_max)),
-                     s.Length());
+    const Eigen::Vector3d middle3(middle.x(), middle.y(), 0.5 * (s.z_min + s.z_max));
+    // As built: turned about its middle, moved along its normal (harsh), plus the deviation.
+    const Eigen::AngleAxisd turn(lookup(out.turned, s.id), Eigen::Vector3d::UnitZ());
+    const double moved = lookup(out.moved, s.id);
+    const Eigen::Vector3d n = turn * s.plane.normal;
+    const double d = s.plane.d + n.dot(middle3) - s.plane.normal.dot(middle3);
+    const geometry::Plane built(n, d + deviation[s.id] + moved);
+    auto built_point = [&](const Eigen::Vector2d& q) -> Eigen::Vector2d {
+      const Eigen::Vector3d p3 =
+          middle3 + turn * Eigen::Vector3d(q.x() - middle.x(), q.y() - middle.y(), 0.0) + moved * n;
+      return point_to_map(Eigen::Vector3d(p3.x(), p3.y(), 0)).head<2>();
+    };
+    p.plane = to_map(built, middle3, s.Length());
     p.orientation = geometry::ClassifyOrientation(p.plane.normal);
-    p.start = point_to_map(Eigen::Vector3d(s.start.x(), s.start.y(), 0)).head<2>();
-    p.end = point_to_map(Eigen::Vector3d(s.end.x(), s.end.y(), 0)).head<2>();
+    p.start = built_point(s.start);
+    p.end = built_point(s.end);
     p.z_min = s.z_min, p.z_max = s.z_max;
     p.num_points = 1000;
     p.covariance = Eigen::Matrix4d::Identity() * 1e-4;
@@ -192,6 +231,7 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& b, const SyntheticSGra
     }
     for (int sid : surfaces) {
       if (sid < 0 || sid >= static_cast<int>(b.surfaces.size())) continue;
+      if (std::find(out.missing.begin(), out.missing.end(), sid) != out.missing.end()) continue;
       const bool split = b.surfaces[sid].rooms.size() > 1 && unit(rng) < config.split_probability;
       auto it = shared_plane.find(sid);
       if (split || it == shared_plane.end()) {
@@ -248,6 +288,25 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& b, const SyntheticSGra
       r.planes.push_back(p.id);
     }
     g.rooms.push_back(r);
+  }
+
+  // The walk: keyframes in M, each chain joined keyframe to keyframe.
+  if (config.walk) {
+    const auto chains = SyntheticWalk(b, rooms, config.walk_spacing, config.through_walls, harsh);
+    std::normal_distribution<double> walk_noise(0.0, config.walk_noise);
+    int id = 0;
+    for (const auto& chain : chains)
+      for (size_t i = 0; i < chain.size(); ++i) {
+        sgraph::Keyframe k;
+        k.id = id++;
+        k.previous = i == 0 ? -1 : k.id - 1;
+        k.stamp = k.id;
+        Eigen::Vector3d p = point_to_map(Eigen::Vector3d(chain[i].x(), chain[i].y(), 0.0));
+        if (config.walk_noise > 0.0)
+          p.head<2>() += Eigen::Vector2d(walk_noise(harsh), walk_noise(harsh));
+        k.pose.translation() = p;
+        g.keyframes.push_back(k);
+      }
   }
   return out;
 }

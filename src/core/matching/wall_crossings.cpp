@@ -10,6 +10,9 @@ namespace matching {
 namespace {
 
 constexpr double kCell = 1.0;  // m
+// A path through a wall goes across it: from the face it went in by to the other within this
+// (a 0.4 m wall crossed at 25 deg to its face). Longer is a path along it, the pose's error.
+constexpr double kMaxTraversal = 1.0;  // m
 
 long long CellKey(long long ix, long long iy) { return (ix << 32) ^ (iy & 0xffffffffLL); }
 
@@ -53,7 +56,10 @@ WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin) {
     if (!s.start.allFinite() || !s.end.allFinite() || s.Length() < 1e-6) continue;
     Storey& storey = storeys_[s.storey];
     const int index = static_cast<int>(storey.surfaces.size());
-    storey.surfaces.push_back({s.start, s.end, s.wall >= 0 ? s.wall : -1 - s.id});
+    const Eigen::Vector2d n = s.plane.normal.head<2>();
+    const bool faced = n.norm() > 0.5;  // no direction (not a wall): crossed wherever it is
+    storey.surfaces.push_back({s.start, s.end, faced ? n.normalized() : Eigen::Vector2d::Zero(),
+                               s.wall >= 0 && faced ? s.wall : -1 - s.id, false});
     // Every cell the surface's segment passes through (sampled finer than a cell).
     std::set<long long> keys;
     const int samples = 1 + static_cast<int>(std::ceil(4.0 * s.Length() / kCell));
@@ -62,6 +68,11 @@ WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin) {
       keys.insert(CellKey(CellOf(p.x()), CellOf(p.y())));
     }
     for (long long key : keys) storey.cells[key].push_back(index);
+  }
+  for (auto& [id, storey] : storeys_) {
+    std::map<int, int> faces;  // wall -> surfaces on this storey
+    for (const auto& f : storey.surfaces) ++faces[f.wall];
+    for (auto& f : storey.surfaces) f.two_faced = f.wall >= 0 && faces[f.wall] > 1;
   }
   for (const auto& d : graph.doorways) {
     if (!d.position.allFinite() || !std::isfinite(d.width)) continue;
@@ -80,8 +91,13 @@ int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, 
   if (found == storeys_.end()) return 0;
   const Storey& s = found->second;
   std::set<int> crossed;
+  std::map<int, Entry> inside;  // wall -> where the path went into it (two-faced walls)
   std::vector<int> candidates;
+  std::vector<std::pair<double, int>> hits;  // along the step, surface index
+  Eigen::Vector2d last(std::nan(""), std::nan(""));
   for (const auto& [m0, m1] : steps) {
+    if (!(m0 - last).isZero(1e-9)) inside.clear();  // a gap: the path starts anew
+    last = m1;
     const Eigen::Vector2d p0 = pose.Apply(m0), p1 = pose.Apply(m1);
     candidates.clear();
     for (long long ix = CellOf(std::min(p0.x(), p1.x())); ix <= CellOf(std::max(p0.x(), p1.x()));
@@ -94,11 +110,32 @@ int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, 
       }
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    hits.clear();
     for (int i : candidates) {
-      const Surface& surface = s.surfaces[i];
       Eigen::Vector2d at;
-      if (crossed.count(surface.wall) || !Intersect(p0, p1, surface.a, surface.b, &at)) continue;
-      if (!NearDoor(s, at)) crossed.insert(surface.wall);
+      if (Intersect(p0, p1, s.surfaces[i].a, s.surfaces[i].b, &at))
+        hits.emplace_back((at - p0).norm(), i);
+    }
+    std::sort(hits.begin(), hits.end());  // in the order walked
+    for (const auto& [distance, i] : hits) {
+      const Surface& surface = s.surfaces[i];
+      const Eigen::Vector2d at = p0 + distance * (p1 - p0).normalized();
+      const bool door = NearDoor(s, at);
+      if (!surface.two_faced) {
+        if (!door) crossed.insert(surface.wall);
+        continue;
+      }
+      if ((p1 - p0).dot(surface.normal) < 0.0) {  // into the wall's material
+        inside[surface.wall] = {i, door, at};
+        continue;
+      }
+      const auto entry = inside.find(surface.wall);  // out of it
+      if (entry == inside.end()) continue;
+      if (entry->second.surface != i && !entry->second.near_door && !door &&
+          (entry->second.at - at).norm() <= kMaxTraversal) {
+        crossed.insert(surface.wall);
+      }
+      inside.erase(entry);
     }
   }
   return static_cast<int>(crossed.size());
