@@ -44,6 +44,7 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "door_margin", c.door_margin);
   ros_params::Read(pnh, "max_path_step", c.max_path_step);
   ros_params::Read(pnh, "ambiguity_margin", c.ambiguity_margin);
+  ros_params::Read(pnh, "doubt_centre_tolerance", c.doubt_centre_tolerance);
   ros_params::Read(pnh, "cluster_yaw_deg", c.cluster_yaw_deg);
   ros_params::Read(pnh, "cluster_translation", c.cluster_translation);
   ros_params::Read(pnh, "min_matched_rooms", c.min_matched_rooms);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,7 +38,11 @@ struct MatchStats {
 ///  3. score: the affinity less what contradicts a hypothesis: BIM walls the robot's walked
 ///     path (its keyframes) crosses under its motion away from every doorway;
 ///  4. decision: hypotheses implying the same motion merged, the best score cluster
-///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide).
+///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide);
+///  5. doubt: a UNIQUE answer is re-checked by a second matcher whose room-centre gate is
+///     doubt_centre_tolerance: where clutter moved the true room's centre out of the strict
+///     gate, the truth is missing from the hypotheses and a lone wrong one would stand; a
+///     hypothesis of another motion it finds within the margin makes the answer AMBIGUOUS.
 /// Incremental: an S-room unchanged since the last call keeps its candidates, and the last best
 /// motion is grown first. Not thread-safe; one matcher per thread.
 class GraphMatcher {
@@ -55,6 +60,7 @@ class GraphMatcher {
   void ForgetHistory() {
     cache_.clear();
     last_best_.reset();
+    if (doubter_) doubter_->ForgetHistory();
   }
 
   const MatchStats& LastStats() const { return stats_; }
@@ -66,6 +72,15 @@ class GraphMatcher {
     RoomDescriptor descriptor;
     std::vector<RoomCandidate> candidates;
   };
+
+  /// Steps 1-3 of Match: candidates (cached), hypotheses grown from seeds, scored.
+  std::vector<Hypothesis> Hypothesize(const sgraph::SGraph& graph,
+                                      const std::vector<RoomDescriptor>& s_rooms);
+  /// A hypothesis of another motion than `best` that the doubter finds within the margin.
+  std::optional<Hypothesis> Doubt(const sgraph::SGraph& graph,
+                                  const std::vector<RoomDescriptor>& s_rooms,
+                                  const Hypothesis& best,
+                                  const std::vector<Eigen::Vector2d>& s_points);
 
   Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,
                   const std::vector<RoomDescriptor>& s_rooms,
@@ -79,6 +94,22 @@ class GraphMatcher {
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
   MatchStats stats_;
+  /// The same matcher with doubt_centre_tolerance (null: no doubt); copied with its owner.
+  struct Doubter {
+    std::unique_ptr<GraphMatcher> matcher;
+    Doubter() = default;
+    Doubter(const Doubter& o)
+        : matcher(o.matcher ? std::make_unique<GraphMatcher>(*o.matcher) : nullptr) {}
+    Doubter& operator=(const Doubter& o) {
+      matcher = o.matcher ? std::make_unique<GraphMatcher>(*o.matcher) : nullptr;
+      return *this;
+    }
+    Doubter(Doubter&&) = default;
+    Doubter& operator=(Doubter&&) = default;
+    GraphMatcher* operator->() const { return matcher.get(); }
+    explicit operator bool() const { return static_cast<bool>(matcher); }
+  };
+  Doubter doubter_;
 };
 
 }  // namespace matching

@@ -29,6 +29,10 @@ struct MatcherConfig {
   int min_matched_rooms{1};          // a UNIQUE match pairs at least this many S-rooms
   double min_matched_fraction{0.5};  // ... and at least this share of the S-Graph's rooms
   int max_seeds{4000};               // bound on the global candidates grown per match
+  // A UNIQUE answer is doubted with this room-centre tolerance (a centre moved by clutter taken
+  // for a wall): a hypothesis found only so, of another motion and within ambiguity_margin,
+  // makes it AMBIGUOUS. <= centre_tolerance: no doubt.
+  double doubt_centre_tolerance{1.2};
 
   /// "" when valid, else what is wrong, naming the field.
   std::string Validate() const;

@@ -28,7 +28,14 @@ bool Unchanged(const RoomDescriptor& a, const RoomDescriptor& b) {
 
 }  // namespace
 
-GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {}
+GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {
+  if (config.doubt_centre_tolerance > config.centre_tolerance) {
+    MatcherConfig lenient = config;
+    lenient.centre_tolerance = config.doubt_centre_tolerance;
+    lenient.doubt_centre_tolerance = 0.0;  // the doubter does not doubt itself
+    doubter_.matcher = std::make_unique<GraphMatcher>(lenient);
+  }
+}
 
 std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   a_rooms_ = DescribeARooms(graph);
@@ -37,6 +44,7 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   has_agraph_ = true;
   cache_.clear();
   last_best_.reset();
+  if (doubter_) doubter_->SetAGraph(graph);
   return CheckAGraph(graph);
 }
 
@@ -129,6 +137,68 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   if (s_rooms.empty()) out.warnings.push_back("no S-Graph rooms with usable planes to match");
   if (a_rooms_.empty() || s_rooms.empty()) return out;
 
+  std::vector<Hypothesis> hypotheses = Hypothesize(graph, s_rooms);
+  std::vector<Eigen::Vector2d> s_points;
+  for (const auto& s : s_rooms) s_points.push_back(s.centre);
+
+  // 4. Decision; 5. a UNIQUE one doubted.
+  Decision decision = Decide(hypotheses, s_points, static_cast<int>(s_rooms.size()), config_);
+  stats_.hypotheses = static_cast<int>(hypotheses.size());
+  std::optional<Hypothesis> doubt;
+  if (decision.status == MatchStatus::kUnique && doubter_) {
+    doubt = Doubt(graph, s_rooms, hypotheses[decision.best], s_points);
+    if (doubt) decision.status = MatchStatus::kAmbiguous;
+  }
+  out.status = decision.status;
+  if (decision.best >= 0) {
+    const Hypothesis& best = hypotheses[decision.best];
+    last_best_ = best.pose;
+    out.score = best.score;
+    out.hypotheses = static_cast<unsigned>(1 + decision.competitors.size() + (doubt ? 1 : 0));
+    out.bim_T_map = best.pose.ToIsometry();
+    std::map<int, MatchPair> surfaces;  // by S-plane id: the best pair
+    for (const auto& m : best.members) {
+      const RoomDescriptor& s = s_rooms[m.s_room];
+      const RoomDescriptor& a = a_rooms_[m.a_room];
+      out.room_pairs.push_back({a.id, s.id, m.evaluation.quality});
+      for (size_t k = 0; k < m.evaluation.surfaces.size(); ++k) {
+        const auto [i, j] = m.evaluation.surfaces[k];
+        const double r = m.evaluation.residuals[k] / config_.quality_sigma;
+        const MatchPair pair{a.planes[j].id, s.planes[i].id, std::exp(-0.5 * r * r)};
+        auto it = surfaces.find(pair.s_id);
+        if (it == surfaces.end() || it->second.score < pair.score) surfaces[pair.s_id] = pair;
+      }
+    }
+    std::sort(out.room_pairs.begin(), out.room_pairs.end(),
+              [](const MatchPair& x, const MatchPair& y) { return x.s_id < y.s_id; });
+    for (const auto& [id, pair] : surfaces) out.surface_pairs.push_back(pair);
+    for (int k : decision.competitors)
+      out.alternatives.push_back(
+          {hypotheses[k].pose.ToIsometry(), hypotheses[k].score, hypotheses[k].rooms});
+    if (doubt) out.alternatives.push_back({doubt->pose.ToIsometry(), doubt->score, doubt->rooms});
+  }
+  stats_.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+std::optional<Hypothesis> GraphMatcher::Doubt(const sgraph::SGraph& graph,
+                                              const std::vector<RoomDescriptor>& s_rooms,
+                                              const Hypothesis& best,
+                                              const std::vector<Eigen::Vector2d>& s_points) {
+  doubter_->stats_ = MatchStats{};  // its own bound on seeds, per call
+  std::vector<Hypothesis> doubts = doubter_->Hypothesize(graph, s_rooms);
+  std::optional<Hypothesis> strongest;
+  for (auto& d : doubts) {
+    if (d.members.empty() || d.score < best.score - config_.ambiguity_margin) continue;
+    if (d.storey == best.storey && SameMotion(best.pose, d.pose, s_points, config_)) continue;
+    if (!strongest || d.score > strongest->score) strongest = std::move(d);
+  }
+  return strongest;
+}
+
+std::vector<Hypothesis> GraphMatcher::Hypothesize(const sgraph::SGraph& graph,
+                                                  const std::vector<RoomDescriptor>& s_rooms) {
   // 1. Local candidates, reused for S-rooms that did not change.
   std::map<int, CachedRoom> cache;
   std::vector<std::vector<RoomCandidate>> candidates(s_rooms.size());
@@ -155,8 +225,6 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   std::stable_sort(seeds.begin(), seeds.end(), [](const RoomCandidate* x, const RoomCandidate* y) {
     return x->quality > y->quality;
   });
-  std::vector<Eigen::Vector2d> s_points;
-  for (const auto& s : s_rooms) s_points.push_back(s.centre);
   std::vector<Hypothesis> hypotheses;
   if (last_best_) hypotheses.push_back(Grow(*last_best_, nullptr, s_rooms, candidates));
   for (const RoomCandidate* seed : seeds) {
@@ -180,40 +248,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   ScoreHypotheses(
       hypotheses, [&](const Hypothesis& h) { return crossings_.Count(path, h.pose, h.storey); },
       config_);
-
-  // 4. Decision.
-  const Decision decision = Decide(hypotheses, s_points, static_cast<int>(s_rooms.size()), config_);
-  stats_.hypotheses = static_cast<int>(hypotheses.size());
-  out.status = decision.status;
-  if (decision.best >= 0) {
-    const Hypothesis& best = hypotheses[decision.best];
-    last_best_ = best.pose;
-    out.score = best.score;
-    out.hypotheses = static_cast<unsigned>(1 + decision.competitors.size());
-    out.bim_T_map = best.pose.ToIsometry();
-    std::map<int, MatchPair> surfaces;  // by S-plane id: the best pair
-    for (const auto& m : best.members) {
-      const RoomDescriptor& s = s_rooms[m.s_room];
-      const RoomDescriptor& a = a_rooms_[m.a_room];
-      out.room_pairs.push_back({a.id, s.id, m.evaluation.quality});
-      for (size_t k = 0; k < m.evaluation.surfaces.size(); ++k) {
-        const auto [i, j] = m.evaluation.surfaces[k];
-        const double r = m.evaluation.residuals[k] / config_.quality_sigma;
-        const MatchPair pair{a.planes[j].id, s.planes[i].id, std::exp(-0.5 * r * r)};
-        auto it = surfaces.find(pair.s_id);
-        if (it == surfaces.end() || it->second.score < pair.score) surfaces[pair.s_id] = pair;
-      }
-    }
-    std::sort(out.room_pairs.begin(), out.room_pairs.end(),
-              [](const MatchPair& x, const MatchPair& y) { return x.s_id < y.s_id; });
-    for (const auto& [id, pair] : surfaces) out.surface_pairs.push_back(pair);
-    for (int k : decision.competitors)
-      out.alternatives.push_back(
-          {hypotheses[k].pose.ToIsometry(), hypotheses[k].score, hypotheses[k].rooms});
-  }
-  stats_.milliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return out;
+  return hypotheses;
 }
 
 }  // namespace matching

@@ -37,6 +37,7 @@ std::string MatcherConfig::Validate() const {
       {"door_margin", door_margin, 0.0, 5.0, false},
       {"max_path_step", max_path_step, 0.0, 100.0, true},
       {"ambiguity_margin", ambiguity_margin, 0.0, 100.0, false},
+      {"doubt_centre_tolerance", doubt_centre_tolerance, 0.0, 10.0, false},
       {"cluster_yaw_deg", cluster_yaw_deg, 0.0, 90.0, true},
       {"cluster_translation", cluster_translation, 0.0, 100.0, true},
       {"min_matched_rooms", static_cast<double>(min_matched_rooms), 1.0, 1e6, false},
