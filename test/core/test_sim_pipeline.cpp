@@ -71,6 +71,33 @@ TEST(SimPipeline, DeviationsChangeTheSceneNotTheAGraph) {
   EXPECT_LT(hit.triangle, 0);
 }
 
+// A wall built turned (rotate_wall): rays along its normal, 1 m either side of its centre, hit
+// it nearer on one side and farther on the other by tan(angle) each; the plan's wall, level.
+TEST(SimPipeline, ARotatedWallIsBuiltTurnedAboutItsCentre) {
+  if (!HaveConverter()) GTEST_SKIP() << "bim/office.ifc or the converter's venv is missing";
+  const auto planned = Prepare("building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\n");
+  const auto built = Prepare(
+      "building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\n"
+      "scene: {deviations: [{type: rotate_wall, wall: p_s2, angle_deg: 10}]}\n");
+  ASSERT_TRUE(planned && built);
+  const agraph::AGraph& g = planned->graph;
+  const auto wall = std::find_if(g.walls.begin(), g.walls.end(),
+                                 [](const agraph::Wall& w) { return w.name == "p_s2"; });
+  ASSERT_NE(wall, g.walls.end());
+  const agraph::WallSurface& face = g.surfaces[wall->surface_a];
+  const Eigen::Vector3d n = face.plane.normal, t = face.Tangent();
+  const Eigen::Vector3d on_face = wall->center - (n.dot(wall->center) - face.plane.d) * n;
+  auto distance = [&](const Simulation& p, double along) {
+    const Eigen::Vector3d from = on_face + along * t + 0.6 * n + Eigen::Vector3d(0, 0, 1.0);
+    return p.embree->Intersect(Ray{from.cast<float>(), (-n).cast<float>(), 5.0f}).distance;
+  };
+  EXPECT_NEAR(distance(*planned, 1.0), 0.6, 0.01);
+  EXPECT_NEAR(distance(*planned, -1.0), 0.6, 0.01);
+  EXPECT_NEAR(std::abs(distance(*built, 1.0) - distance(*built, -1.0)),
+              2.0 * std::tan(10.0 * M_PI / 180.0), 0.03);
+  EXPECT_NEAR(distance(*built, 1.0) + distance(*built, -1.0), 1.2, 0.03) << "about its centre";
+}
+
 TEST(SimPipeline, BadInputsNameTheField) {
   if (!HaveConverter()) GTEST_SKIP() << "bim/office.ifc or the converter's venv is missing";
   auto error = [](const std::string& yaml) {

@@ -39,6 +39,7 @@ scene:
     - {type: move_wall, wall: p_n1, offset: 0.1}
     - {type: remove_wall, wall: 3}
     - {type: add_wall, start: [1, 1], end: [3, 1], thickness: 0.12}
+    - {type: rotate_wall, wall: p_s1, angle_deg: -12.5}
   clutter:
     - {type: pallet, room: "101", offset: [0.5, 0]}
     - {type: person, position: [2, 6]}
@@ -56,8 +57,10 @@ scene:
   EXPECT_DOUBLE_EQ(c.sensor.range_noise_stddev, 0.02);
   EXPECT_DOUBLE_EQ(c.sensor.azimuth_resolution_deg, 0.2);  // default kept
   EXPECT_DOUBLE_EQ(c.odometry.rate_hz, 50.0);
-  ASSERT_EQ(c.scene.deviations.size(), 3u);
+  ASSERT_EQ(c.scene.deviations.size(), 4u);
   EXPECT_EQ(c.scene.deviations[0].wall.name, "p_n1");
+  EXPECT_EQ(c.scene.deviations[3].type, DeviationConfig::Type::kRotateWall);
+  EXPECT_DOUBLE_EQ(c.scene.deviations[3].angle_deg, -12.5);
   EXPECT_EQ(c.scene.deviations[1].wall.id, 3);
   EXPECT_EQ(c.scene.deviations[2].type, DeviationConfig::Type::kAddWall);
   ASSERT_EQ(c.scene.clutter.size(), 2u);
@@ -100,6 +103,12 @@ TEST(SimScenarioYaml, ErrorsNameTheField) {
   ExpectError("building: b.ifc\n" + rooms + "}\nscene: {clutter: [{type: box}]}\n",
               "scene.clutter[0]: needs `position` or `room`");
   ExpectError("building: b.ifc\n" + rooms + "}\nduration: -3\n", "duration");
+  ExpectError(
+      "building: b.ifc\n" + rooms + "}\nscene: {deviations: [{type: rotate_wall, wall: w}]}\n",
+      "scene.deviations[0].angle_deg: missing");
+  ExpectError("building: b.ifc\n" + rooms +
+                  "}\nscene: {deviations: [{type: rotate_wall, wall: w, angle_deg: 60}]}\n",
+              "scene.deviations[0].angle_deg");
 }
 
 TEST(SimScenarioYaml, ReadsDropoutsAndKidnap) {

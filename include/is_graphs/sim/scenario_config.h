@@ -106,10 +106,11 @@ struct WallRef {
 
 /// BIM deviation: the scene differs from the planned BIM (the A-Graph stays the planned one).
 struct DeviationConfig {
-  enum class Type { kMoveWall, kRemoveWall, kAddWall };
+  enum class Type { kMoveWall, kRemoveWall, kAddWall, kRotateWall };
   Type type{Type::kMoveWall};
-  WallRef wall;        // move_wall, remove_wall
-  double offset{0.0};  // move_wall: m along the wall's first surface normal
+  WallRef wall;           // move_wall, remove_wall, rotate_wall
+  double offset{0.0};     // move_wall: m along the wall's first surface normal
+  double angle_deg{0.0};  // rotate_wall: about the vertical through the wall's centre, CCW
   Eigen::Vector2d start{Eigen::Vector2d::Zero()}, end{Eigen::Vector2d::Zero()};  // add_wall
   double thickness{0.1};                                                         // add_wall
   double height{0.0};  // add_wall: 0 = the storey height

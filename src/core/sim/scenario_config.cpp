@@ -176,6 +176,10 @@ std::string ScenarioConfig::Validate() const {
       e = Range(f + ".offset", d.offset, -5.0, 5.0, "m");
       if (!e.empty()) return e;
     }
+    if (d.type == DeviationConfig::Type::kRotateWall) {
+      e = Range(f + ".angle_deg", d.angle_deg, -45.0, 45.0, "deg");
+      if (!e.empty()) return e;
+    }
   }
   for (std::size_t i = 0; i < scene.clutter.size(); ++i) {
     const ClutterConfig& c = scene.clutter[i];

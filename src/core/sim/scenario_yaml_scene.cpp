@@ -22,7 +22,7 @@ WallRef ParseWallRef(const YAML::Node& n, const std::string& f) {
 }
 
 DeviationConfig ParseDeviation(const YAML::Node& n, const std::string& f) {
-  CheckMap(n, f, {"type", "wall", "offset", "start", "end", "thickness", "height"});
+  CheckMap(n, f, {"type", "wall", "offset", "angle_deg", "start", "end", "thickness", "height"});
   DeviationConfig d;
   std::string type;
   Get(n, f, "type", &type);
@@ -31,6 +31,11 @@ DeviationConfig ParseDeviation(const YAML::Node& n, const std::string& f) {
     d.wall = ParseWallRef(n["wall"], f + ".wall");
     if (!n["offset"]) Fail(f + ".offset", "missing (metres along the wall normal)");
     Get(n, f, "offset", &d.offset);
+  } else if (type == "rotate_wall") {
+    d.type = DeviationConfig::Type::kRotateWall;
+    d.wall = ParseWallRef(n["wall"], f + ".wall");
+    if (!n["angle_deg"]) Fail(f + ".angle_deg", "missing (degrees about the wall's centre)");
+    Get(n, f, "angle_deg", &d.angle_deg);
   } else if (type == "remove_wall") {
     d.type = DeviationConfig::Type::kRemoveWall;
     d.wall = ParseWallRef(n["wall"], f + ".wall");
@@ -42,7 +47,8 @@ DeviationConfig ParseDeviation(const YAML::Node& n, const std::string& f) {
     Get(n, f, "thickness", &d.thickness);
     Get(n, f, "height", &d.height);
   } else {
-    Fail(f + ".type", "must be move_wall, remove_wall or add_wall, got '" + type + "'");
+    Fail(f + ".type",
+         "must be move_wall, rotate_wall, remove_wall or add_wall, got '" + type + "'");
   }
   return d;
 }

@@ -1,5 +1,6 @@
 #include "is_graphs/sim/scene.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -105,8 +106,10 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
           ? graph.storeys[storey].height
           : 2.7;
 
-  // Per IFC id: offset to apply (move_wall) or removal (remove_wall).
+  // Per IFC id: offset to apply (move_wall), turn about a vertical (rotate_wall: centre, angle)
+  // or removal (remove_wall).
   std::map<long, Eigen::Vector3d> moved;
+  std::map<long, std::pair<Eigen::Vector3d, double>> turned;
   std::set<long> removed;
   SceneMesh scene;
   for (std::size_t i = 0; i < config.deviations.size(); ++i) {
@@ -126,6 +129,10 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
     if (d.type == DeviationConfig::Type::kRemoveWall) {
       removed.insert(w.ifc_id);
       log.lines.push_back(field + ": removed wall '" + w.name + "'");
+    } else if (d.type == DeviationConfig::Type::kRotateWall) {
+      turned[w.ifc_id] = {w.center, d.angle_deg * M_PI / 180.0};
+      log.lines.push_back(field + ": turned wall '" + w.name + "' by " +
+                          std::to_string(d.angle_deg) + " deg");
     } else {
       const Eigen::Vector3d n =
           w.surface_a >= 0 ? graph.surfaces[w.surface_a].plane.normal : Eigen::Vector3d::UnitX();
@@ -150,18 +157,30 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
     if (is_wall && removed.count(ifc_id)) continue;
     Eigen::Vector3d shift = Eigen::Vector3d::Zero();
     if (is_wall && moved.count(ifc_id)) shift = moved[ifc_id];
+    const auto turn = is_wall ? turned.find(ifc_id) : turned.end();
+    auto built = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+      if (turn == turned.end()) return p + shift;
+      const Eigen::Vector3d& c = turn->second.first;
+      const Eigen::Vector3d q =
+          c + Eigen::AngleAxisd(turn->second.second, Eigen::Vector3d::UnitZ()) *
+                  Eigen::Vector3d(p.x() - c.x(), p.y() - c.y(), 0.0);
+      return Eigen::Vector3d(q.x(), q.y(), p.z()) + shift;
+    };
     if (is_wall) seen_walls.insert(ifc_id);
     const float refl =
         static_cast<float>(is_wall                                  ? config.wall_reflectivity
                            : (cls == "IfcSlab" || cls == "IfcSite") ? config.floor_reflectivity
                                                                     : 0.4);
     const Eigen::Vector3i& tri = bim.triangles[t];
-    scene.AddTriangle(bim.vertices[tri[0]] + shift, bim.vertices[tri[1]] + shift,
-                      bim.vertices[tri[2]] + shift, refl);
+    scene.AddTriangle(built(bim.vertices[tri[0]]), built(bim.vertices[tri[1]]),
+                      built(bim.vertices[tri[2]]), refl);
   }
-  for (const auto& kv : moved) {
-    if (!seen_walls.count(kv.first)) {
-      return R::Error("scene.deviations: the wall with IFC id " + std::to_string(kv.first) +
+  std::set<long> deviated;
+  for (const auto& kv : moved) deviated.insert(kv.first);
+  for (const auto& kv : turned) deviated.insert(kv.first);
+  for (long id : deviated) {
+    if (!seen_walls.count(id)) {
+      return R::Error("scene.deviations: the wall with IFC id " + std::to_string(id) +
                       " has no triangles in the mesh");
     }
   }

@@ -4,7 +4,7 @@
 // seeds. Prints a Markdown table: median and p90 of a cold match (fresh matcher), of a warm
 // re-match (the next revision, nothing changed: incremental reuse) and the share UNIQUE.
 //
-//   bench_matching [--reps N]
+//   bench_matching [--reps N] [--no-doubt]   (--no-doubt: doubt_centre_tolerance 0, no re-check)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -88,8 +88,15 @@ double Percentile(std::vector<double> v, double p) {
 int main(int argc, char** argv) {
   using namespace is_graphs;
   int reps = 30;
-  for (int i = 1; i + 1 < argc; ++i)
-    if (std::strcmp(argv[i], "--reps") == 0) reps = std::max(1, std::atoi(argv[i + 1]));
+  matching::MatcherConfig config;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
+      reps = std::max(1, std::atoi(argv[++i]));
+    else if (std::strcmp(argv[i], "--no-doubt") == 0)
+      config.doubt_centre_tolerance = 0.0;
+    else
+      return std::fprintf(stderr, "usage: bench_matching [--reps N] [--no-doubt]\n"), 2;
+  }
   const struct { int cols, rows; } buildings[] = {{5, 2}, {10, 6}, {20, 10}};
   std::printf(
       "| A-Graph rooms | S-Graph rooms | cold median ms | cold p90 ms | warm median ms | "
@@ -112,7 +119,7 @@ int main(int argc, char** argv) {
         c.bim_deviation = 0.05;
         c.seed = rng();
         matching::SyntheticSGraph s = matching::MakeSyntheticSGraph(g, c);
-        matching::GraphMatcher matcher;
+        matching::GraphMatcher matcher(config);
         matcher.SetAGraph(g);
         const auto m = matcher.Match(s.graph);
         cold.push_back(matcher.LastStats().milliseconds);
