@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <string>
@@ -98,6 +100,41 @@ inline bool MatchIsCorrect(const matching::GraphMatch& m, const matching::Synthe
   if (why) *why = out.str();
   return ok;
 }
+
+/// The tally of a randomized matching campaign, overall and per building.
+struct CampaignTally {
+  int trials{0}, unique{0}, ambiguous{0}, none{0}, wrong{0};
+  std::map<std::string, std::array<int, 4>> per_building;  // trials, unique, ambiguous, wrong
+
+  /// Counts one answer; a wrong UNIQUE fails the test, naming the trial (`what`) and why.
+  void Add(const std::string& building, const matching::GraphMatch& m,
+           const matching::SyntheticSGraph& s, const std::string& what) {
+    auto& b = per_building[building];
+    ++trials, ++b[0];
+    if (m.status == matching::MatchStatus::kUnique) {
+      ++unique, ++b[1];
+      std::string why;
+      if (!MatchIsCorrect(m, s, &why)) {
+        ++wrong, ++b[3];
+        ADD_FAILURE() << what << ": wrong UNIQUE: " << why;
+      }
+    } else if (m.status == matching::MatchStatus::kAmbiguous) {
+      ++ambiguous, ++b[2];
+    } else {
+      ++none;
+    }
+  }
+
+  void Print(const std::string& tag, double seconds, const std::string& extra = "") const {
+    std::cout << "[ " << tag << " ] " << trials << " trials in " << seconds << " s" << extra
+              << ": UNIQUE " << unique << " (" << 100.0 * unique / std::max(trials, 1)
+              << " %), AMBIGUOUS " << ambiguous << ", NONE " << none << ", wrong UNIQUE " << wrong
+              << std::endl;
+    for (const auto& [name, st] : per_building)
+      std::cout << "[ " << tag << " ]   " << name << ": " << st[0] << " trials, UNIQUE " << st[1]
+                << ", AMBIGUOUS " << st[2] << ", wrong " << st[3] << std::endl;
+  }
+};
 
 }  // namespace testing
 }  // namespace is_graphs

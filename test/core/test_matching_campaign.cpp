@@ -34,8 +34,7 @@ TEST(MatchingCampaign, ThousandRandomTrialsWithoutAWrongUniqueMatch) {
   const int kTrials = 1000;
   std::vector<GraphMatcher> matchers(buildings.size());
   for (size_t b = 0; b < buildings.size(); ++b) matchers[b].SetAGraph(*buildings[b].second);
-  std::map<std::string, std::array<int, 4>> per_building;  // trials, unique, ambiguous, wrong
-  int unique = 0, ambiguous = 0, none = 0, wrong = 0;
+  testing::CampaignTally tally;
   const auto t0 = std::chrono::steady_clock::now();
   for (int trial = 0; trial < kTrials; ++trial) {
     const size_t b = std::uniform_int_distribution<size_t>(0, buildings.size() - 1)(rng);
@@ -53,33 +52,16 @@ TEST(MatchingCampaign, ThousandRandomTrialsWithoutAWrongUniqueMatch) {
     c.extra_rooms = unit(rng) < 0.2 ? 1 : 0;
     c.split_probability = unit(rng) < 0.3 ? 0.5 : 0.0;
     const SyntheticSGraph s = MakeSyntheticSGraph(g, c);
-    const GraphMatch m = matchers[b].Match(s.graph);
-    auto& stats = per_building[buildings[b].first];
-    ++stats[0];
-    if (m.status == MatchStatus::kUnique) {
-      ++unique, ++stats[1];
-      std::string why;
-      if (!testing::MatchIsCorrect(m, s, &why)) {
-        ++wrong, ++stats[3];
-        ADD_FAILURE() << "trial " << trial << " (" << buildings[b].first << ", " << c.rooms.size()
-                      << " rooms, S-Graph seed " << c.seed << "): wrong UNIQUE: " << why;
-      }
-    } else if (m.status == MatchStatus::kAmbiguous) {
-      ++ambiguous, ++stats[2];
-    } else {
-      ++none;
-    }
+    tally.Add(buildings[b].first, matchers[b].Match(s.graph), s,
+              "trial " + std::to_string(trial) + " (" + buildings[b].first + ", " +
+                  std::to_string(c.rooms.size()) + " rooms, S-Graph seed " +
+                  std::to_string(c.seed) + ")");
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "[ campaign ] " << kTrials << " trials in " << seconds << " s: UNIQUE " << unique
-            << " (" << 100.0 * unique / kTrials << " %), AMBIGUOUS " << ambiguous << ", NONE "
-            << none << ", wrong UNIQUE " << wrong << std::endl;
-  for (const auto& [name, st] : per_building)
-    std::cout << "[ campaign ]   " << name << ": " << st[0] << " trials, UNIQUE " << st[1]
-              << ", AMBIGUOUS " << st[2] << ", wrong " << st[3] << std::endl;
-  RecordProperty("unique_share", std::to_string(static_cast<double>(unique) / kTrials));
-  EXPECT_EQ(wrong, 0);
+  tally.Print("campaign", seconds);
+  RecordProperty("unique_share", std::to_string(static_cast<double>(tally.unique) / kTrials));
+  EXPECT_EQ(tally.wrong, 0);
   EXPECT_LT(seconds, 60.0);
 }
 

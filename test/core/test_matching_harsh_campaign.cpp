@@ -60,8 +60,8 @@ TEST(MatchingHarshCampaign, ThousandHarshTrialsWithoutAWrongUniqueMatch) {
   const int kTrials = 1000;
   std::vector<GraphMatcher> matchers(buildings.size());
   for (size_t b = 0; b < buildings.size(); ++b) matchers[b].SetAGraph(*buildings[b].second);
-  std::map<std::string, std::array<int, 4>> per_building;  // trials, unique, ambiguous, wrong
-  int unique = 0, wrong = 0, keyframes = 0, with_opening = 0;
+  testing::CampaignTally tally;
+  int keyframes = 0, with_opening = 0;
   const auto t0 = std::chrono::steady_clock::now();
   for (int trial = 0; trial < kTrials; ++trial) {
     const size_t b = std::uniform_int_distribution<size_t>(0, buildings.size() - 1)(rng);
@@ -70,33 +70,19 @@ TEST(MatchingHarshCampaign, ThousandHarshTrialsWithoutAWrongUniqueMatch) {
     const SyntheticSGraph s = MakeSyntheticSGraph(g, c);
     keyframes += static_cast<int>(s.graph.keyframes.size());
     with_opening += c.through_walls > 0;
-    const GraphMatch m = matchers[b].Match(s.graph);
-    auto& stats = per_building[buildings[b].first];
-    ++stats[0];
-    if (m.status == MatchStatus::kUnique) {
-      ++unique, ++stats[1];
-      std::string why;
-      if (!testing::MatchIsCorrect(m, s, &why)) {
-        ++wrong, ++stats[3];
-        ADD_FAILURE() << "trial " << trial << " (" << buildings[b].first << ", " << c.rooms.size()
-                      << " rooms, moved " << c.moved_walls << ", turned " << c.turned_walls
-                      << ", missing " << c.missing_walls << ", through walls " << c.through_walls
-                      << ", S-Graph seed " << c.seed << "): wrong UNIQUE: " << why;
-      }
-    } else if (m.status == MatchStatus::kAmbiguous) {
-      ++stats[2];
-    }
+    tally.Add(buildings[b].first, matchers[b].Match(s.graph), s,
+              "trial " + std::to_string(trial) + " (" + buildings[b].first + ", " +
+                  std::to_string(c.rooms.size()) + " rooms, moved " +
+                  std::to_string(c.moved_walls) + ", turned " + std::to_string(c.turned_walls) +
+                  ", missing " + std::to_string(c.missing_walls) + ", through walls " +
+                  std::to_string(c.through_walls) + ", S-Graph seed " + std::to_string(c.seed) +
+                  ")");
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "[ harsh ] " << kTrials << " trials in " << seconds << " s (" << keyframes
-            << " keyframes, " << with_opening << " walks through a plan wall): UNIQUE " << unique
-            << " (" << 100.0 * unique / kTrials << " %), wrong UNIQUE " << wrong << std::endl;
-  for (const auto& [name, st] : per_building)
-    std::cout << "[ harsh ]   " << name << ": " << st[0] << " trials, UNIQUE " << st[1]
-              << ", AMBIGUOUS " << st[2] << ", wrong " << st[3] << std::endl;
-  RecordProperty("unique_share", std::to_string(static_cast<double>(unique) / kTrials));
-  EXPECT_EQ(wrong, 0);
+  tally.Print("harsh", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+              " (" + std::to_string(keyframes) + " keyframes, " + std::to_string(with_opening) +
+                  " walks through a plan wall)");
+  RecordProperty("unique_share", std::to_string(static_cast<double>(tally.unique) / kTrials));
+  EXPECT_EQ(tally.wrong, 0);
   EXPECT_GT(keyframes, 10 * kTrials);  // the walk is there to be weighed
 }
 
