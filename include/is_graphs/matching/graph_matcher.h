@@ -94,22 +94,9 @@ class GraphMatcher {
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
   MatchStats stats_;
-  /// The same matcher with doubt_centre_tolerance (null: no doubt); copied with its owner.
-  struct Doubter {
-    std::unique_ptr<GraphMatcher> matcher;
-    Doubter() = default;
-    Doubter(const Doubter& o)
-        : matcher(o.matcher ? std::make_unique<GraphMatcher>(*o.matcher) : nullptr) {}
-    Doubter& operator=(const Doubter& o) {
-      matcher = o.matcher ? std::make_unique<GraphMatcher>(*o.matcher) : nullptr;
-      return *this;
-    }
-    Doubter(Doubter&&) = default;
-    Doubter& operator=(Doubter&&) = default;
-    GraphMatcher* operator->() const { return matcher.get(); }
-    explicit operator bool() const { return static_cast<bool>(matcher); }
-  };
-  Doubter doubter_;
+  /// The same matcher with doubt_centre_tolerance (null: no doubt). Owning it makes a
+  /// GraphMatcher move-only: one per thread, as said above.
+  std::unique_ptr<GraphMatcher> doubter_;
 };
 
 }  // namespace matching

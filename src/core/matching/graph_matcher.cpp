@@ -33,7 +33,7 @@ GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {
     MatcherConfig lenient = config;
     lenient.centre_tolerance = config.doubt_centre_tolerance;
     lenient.doubt_centre_tolerance = 0.0;  // the doubter does not doubt itself
-    doubter_.matcher = std::make_unique<GraphMatcher>(lenient);
+    doubter_ = std::make_unique<GraphMatcher>(lenient);
   }
 }
 

@@ -93,7 +93,12 @@ int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, 
   std::set<int> crossed;
   std::map<int, Entry> inside;  // wall -> where the path went into it (two-faced walls)
   std::vector<int> candidates;
-  std::vector<std::pair<double, int>> hits;  // along the step, surface index
+  struct Hit {
+    double distance;  // along the step
+    int surface;
+    Eigen::Vector2d at;
+  };
+  std::vector<Hit> hits;
   Eigen::Vector2d last(std::nan(""), std::nan(""));
   for (const auto& [m0, m1] : steps) {
     if (!(m0 - last).isZero(1e-9)) inside.clear();  // a gap: the path starts anew
@@ -114,12 +119,13 @@ int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, 
     for (int i : candidates) {
       Eigen::Vector2d at;
       if (Intersect(p0, p1, s.surfaces[i].a, s.surfaces[i].b, &at))
-        hits.emplace_back((at - p0).norm(), i);
+        hits.push_back({(at - p0).norm(), i, at});
     }
-    std::sort(hits.begin(), hits.end());  // in the order walked
-    for (const auto& [distance, i] : hits) {
+    std::sort(hits.begin(), hits.end(), [](const Hit& x, const Hit& y) {  // in the order walked
+      return x.distance != y.distance ? x.distance < y.distance : x.surface < y.surface;
+    });
+    for (const auto& [distance, i, at] : hits) {
       const Surface& surface = s.surfaces[i];
-      const Eigen::Vector2d at = p0 + distance * (p1 - p0).normalized();
       const bool door = NearDoor(s, at);
       if (!surface.two_faced) {
         if (!door) crossed.insert(surface.wall);
