@@ -41,6 +41,10 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "quality_sigma", c.quality_sigma);
   ros_params::Read(pnh, "corridor_weight", c.corridor_weight);
   ros_params::Read(pnh, "wall_crossing_penalty", c.wall_crossing_penalty);
+  ros_params::Read(pnh, "surface_evidence_weight", c.surface_evidence_weight);
+  ros_params::Read(pnh, "surface_full_length", c.surface_full_length);
+  ros_params::Read(pnh, "surface_min_length", c.surface_min_length);
+  ros_params::Read(pnh, "surface_min_height", c.surface_min_height);
   ros_params::Read(pnh, "door_margin", c.door_margin);
   ros_params::Read(pnh, "max_path_step", c.max_path_step);
   ros_params::Read(pnh, "ambiguity_margin", c.ambiguity_margin);

@@ -93,6 +93,26 @@ TEST(WallCrossings, InAndOutByOneFaceOrThroughTheDoorIsNoCrossing) {
   EXPECT_EQ(crossings.Count({{{9.0, 1.0}, {7.0, 1.0}}}, identity, 1), 1);
 }
 
+// A face split into collinear pieces (a converter splits a face where rooms or openings meet)
+// is still one face: in by one piece and out by the next is no crossing.
+TEST(WallCrossings, InByOnePieceOfAFaceAndOutByTheNextIsNoCrossing) {
+  agraph::AGraph g = TwoRooms();
+  g.surfaces[0] = Surface(0, 0, 0, {3.95, 0.0}, {3.95, 1.0}, {-1.0, 0.0});
+  g.surfaces.push_back(Surface(3, 0, 0, {3.95, 1.0}, {3.95, 2.0}, {-1.0, 0.0}));
+  const WallCrossings crossings(g, 0.4);
+  const Pose2 identity;
+  // In by piece 0 (y 0..1), along inside the wall, out by piece 3 (y 1..2) of the same face.
+  EXPECT_EQ(crossings.Count(
+                {{{3.0, 0.5}, {4.0, 0.95}}, {{4.0, 0.95}, {4.0, 1.2}}, {{4.0, 1.2}, {3.0, 1.5}}},
+                identity, 0),
+            0);
+  // Through the wall there is still a crossing.
+  EXPECT_EQ(crossings.Count(
+                {{{3.0, 0.5}, {4.0, 0.95}}, {{4.0, 0.95}, {4.0, 1.2}}, {{4.0, 1.2}, {5.0, 1.5}}},
+                identity, 0),
+            1);
+}
+
 TEST(WallCrossings, WalkedPathJoinsKeyframesToTheirPreviousAndSkipsGaps) {
   sgraph::SGraph s;
   const double xs[] = {0.0, 0.8, 3.8, 4.6};

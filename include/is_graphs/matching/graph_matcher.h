@@ -12,6 +12,7 @@
 #include "is_graphs/matching/hypothesis_scoring.h"
 #include "is_graphs/matching/matcher_config.h"
 #include "is_graphs/matching/room_descriptor.h"
+#include "is_graphs/matching/surface_evidence.h"
 #include "is_graphs/matching/wall_crossings.h"
 #include "is_graphs/sgraph/sgraph.h"
 
@@ -35,8 +36,9 @@ struct MatchStats {
 ///     join in order of distance when a room pair of theirs is consistent with the seed pair
 ///     (pairwise, CLIPPER-style) and with the motion refitted so far; finally re-checked under
 ///     the motion fitted to everything, and scored by global affinity;
-///  3. score: the affinity less what contradicts a hypothesis: BIM walls the robot's walked
-///     path (its keyframes) crosses under its motion away from every doorway;
+///  3. score: the affinity, plus the wall planes outside its pairs (seen through doorways, a
+///     corridor's end) that lie on BIM wall-surfaces under its motion, less what contradicts
+///     it: BIM walls the robot's walked path (its keyframes) crosses away from every doorway;
 ///  4. decision: hypotheses implying the same motion merged, the best score cluster
 ///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide);
 ///  5. doubt: a UNIQUE answer is re-checked by a second matcher whose room-centre gate is
@@ -91,6 +93,7 @@ class GraphMatcher {
   std::string a_sha256_;
   std::vector<RoomDescriptor> a_rooms_;
   WallCrossings crossings_;
+  SurfaceEvidence surfaces_;
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
   MatchStats stats_;

@@ -28,6 +28,7 @@ struct Hypothesis {
   int storey{-1};  // the A-Graph storey of its pairs (a hypothesis keeps to one)
   std::vector<MemberPair> members;
   double affinity{0.0};  // GlobalAffinity of the members
+  double evidence{0.0};  // surface_evidence_weight x SurfaceEvidence of the loose wall planes
   int crossings{-1};     // walls the walked path crosses under `pose`; -1: not evaluated
   double score{0.0};
   int rooms{0};  // matched S-rooms
@@ -37,13 +38,16 @@ struct Hypothesis {
 /// fixes the motion only across an axis).
 double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfig& config);
 
-/// Scores every hypothesis: affinity - wall_crossing_penalty x crossings(h), the walls the
-/// walked path crosses under its motion. crossings(h) is evaluated best first and only while it
-/// can still change the decision: a hypothesis whose affinity is more than ambiguity_margin
-/// below the best score so far can neither win nor compete, and keeps crossings = -1.
+/// Scores every hypothesis: affinity + evidence(h) - wall_crossing_penalty x crossings(h):
+/// evidence(h) what the S-Graph shows beyond the pairs that fits h (wall planes on the BIM's
+/// surfaces, already weighted), crossings(h) the walls the walked path crosses under its
+/// motion. crossings(h) is evaluated best first and only while it can still change the
+/// decision: a hypothesis scoring more than ambiguity_margin below the best score so far can
+/// neither win nor compete, and keeps crossings = -1.
 /// (Penalising S-rooms a hypothesis pairs with nothing was tried and left out: it widened the
 /// gaps between partial hypotheses of a mirror image until one became UNIQUE.)
 void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
+                     const std::function<double(const Hypothesis&)>& evidence,
                      const std::function<int(const Hypothesis&)>& crossings,
                      const MatcherConfig& config);
 

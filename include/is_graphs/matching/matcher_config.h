@@ -22,6 +22,13 @@ struct MatcherConfig {
   double wall_crossing_penalty{0.25};  // per BIM wall the walked path crosses under it
   double door_margin{0.4};             // a crossing this far beyond a doorway's half-width
   double max_path_step{1.5};           // longer keyframe steps (scan gaps) are not checked
+  // Loose wall planes (in no S-room: seen through a doorway, a corridor's end) that lie on the
+  // BIM's wall-surfaces under a hypothesis (SurfaceEvidence): each adds up to
+  // surface_evidence_weight to its score; 0: not used.
+  double surface_evidence_weight{0.1};
+  double surface_full_length{2.0};  // a plane this long counts fully, a shorter one in proportion
+  double surface_min_length{1.0};   // shorter planes (or lower ones) are not taken for walls
+  double surface_min_height{1.9};
   // --- decision ---
   double ambiguity_margin{0.4};      // hypotheses scoring within this of the best compete
   double cluster_yaw_deg{3.0};       // hypotheses closer than this (and cluster_translation)

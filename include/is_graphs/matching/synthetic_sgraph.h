@@ -15,7 +15,9 @@ namespace matching {
 
 /// How to make an S-Graph from an A-Graph (for tests and the benchmark, before the S-Graph node
 /// exists): the chosen rooms' surfaces as planes in a map frame M related to B by a planar rigid
-/// motion, with noise, BIM deviations, clutter and rooms the BIM does not have.
+/// motion, with noise, BIM deviations, clutter and rooms the BIM does not have. Clutter planes
+/// are 1-2.5 m long and 1.2-2.2 m high (a cupboard, a screen: taken for a wall by their size),
+/// extra rooms' planes as long as their sides; their extents come from the harsh stream.
 struct SyntheticSGraphConfig {
   std::vector<int> rooms;                                      // A-room ids to take; empty: all
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // the truth (yaw + translation)
@@ -40,6 +42,8 @@ struct SyntheticSGraphConfig {
   double walk_spacing{0.8};      // m between keyframes
   double walk_noise{0.0};        // σ of each keyframe's position, per axis [m]
   int through_walls{0};          // walks through walls the plan has (openings it lacks)
+  std::vector<int> seen_rooms;   // A-rooms whose surfaces are mapped as planes of no S-room
+                                 // (seen through a doorway), each 40-100 % of it
   std::uint64_t seed{1};
 };
 

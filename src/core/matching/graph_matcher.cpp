@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <set>
 
 #include "is_graphs/matching/input_checks.h"
 
@@ -40,6 +41,7 @@ GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {
 std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   a_rooms_ = DescribeARooms(graph);
   crossings_ = WallCrossings(graph, config_.door_margin);
+  surfaces_ = SurfaceEvidence(graph, config_);
   a_sha256_ = graph.source.sha256;
   has_agraph_ = true;
   cache_.clear();
@@ -243,11 +245,30 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const sgraph::SGraph& graph,
     hypotheses.push_back(Grow(seed->pose, seed, s_rooms, candidates));
   }
 
-  // 3. Scores: the pairs' affinity less the walls the walked path crosses under each motion.
+  // 3. Scores: the pairs' affinity, plus the wall planes outside the pairs that the BIM
+  // explains, less the walls the walked path crosses under each motion.
   const std::vector<PathStep> path = WalkedPath(graph, config_.max_path_step);
+  const std::vector<WallSegment> walls = config_.surface_evidence_weight > 0.0
+                                             ? WallSegments(graph, config_)
+                                             : std::vector<WallSegment>{};
+  // The loose wall planes, in no S-room: the same set for every hypothesis. (A room's planes
+  // are weighed by its pair. Counting all planes lets the partial fits of a mirror image, or of
+  // a cluttered twin, pull apart on planes their pairs already weigh; counting those of the
+  // rooms a hypothesis leaves unpaired rewards pairing fewer: both were tried, both gave wrong
+  // or unfounded UNIQUE answers.)
+  std::set<int> in_rooms;
+  for (const auto& room : graph.rooms) in_rooms.insert(room.planes.begin(), room.planes.end());
+  std::vector<const WallSegment*> loose;
+  for (const auto& w : walls)
+    if (!in_rooms.count(w.id)) loose.push_back(&w);
+  auto evidence = [&](const Hypothesis& h) {
+    return loose.empty()
+               ? 0.0
+               : config_.surface_evidence_weight * surfaces_.Explained(loose, h.pose, h.storey);
+  };
   ScoreHypotheses(
-      hypotheses, [&](const Hypothesis& h) { return crossings_.Count(path, h.pose, h.storey); },
-      config_);
+      hypotheses, evidence,
+      [&](const Hypothesis& h) { return crossings_.Count(path, h.pose, h.storey); }, config_);
   return hypotheses;
 }
 

@@ -16,13 +16,15 @@ double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfi
 }
 
 void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
+                     const std::function<double(const Hypothesis&)>& evidence,
                      const std::function<int(const Hypothesis&)>& crossings,
                      const MatcherConfig& config) {
   std::vector<int> order;
   for (size_t k = 0; k < hypotheses.size(); ++k) {
     Hypothesis& h = hypotheses[k];
     h.crossings = -1;
-    h.score = h.affinity;
+    h.evidence = h.members.empty() ? 0.0 : evidence(h);
+    h.score = h.affinity + h.evidence;
     if (!h.members.empty()) order.push_back(static_cast<int>(k));
   }
   std::stable_sort(order.begin(), order.end(),

@@ -258,6 +258,12 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& b, const SyntheticSGra
     next_plane += 3;
     p.plane = geometry::Plane::FromPointNormal(r.center - (0.3 + 0.7 * unit(rng)) * n, n);
     p.orientation = geometry::ClassifyOrientation(n);
+    const Eigen::Vector2d foot = p.plane.Project(r.center).head<2>();
+    const Eigen::Vector2d along(-n.y(), n.x());
+    const double half = 0.5 + 0.75 * harsh_unit(harsh);
+    p.start = foot - half * along, p.end = foot + half * along;
+    p.z_min = 0.0, p.z_max = 1.2 + harsh_unit(harsh);
+    p.num_points = 300;
     g.planes.push_back(p);
     r.planes.push_back(p.id);
   }
@@ -284,6 +290,11 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& b, const SyntheticSGra
       next_plane += 3;
       p.plane = geometry::Plane::FromPointNormal(r.center - half[side % 2] * n, n);
       p.orientation = geometry::ClassifyOrientation(n);
+      const Eigen::Vector2d foot = (r.center - half[side % 2] * n).head<2>();
+      const Eigen::Vector2d along(-n.y(), n.x());
+      p.start = foot - half[(side + 1) % 2] * along, p.end = foot + half[(side + 1) % 2] * along;
+      p.z_min = 0.0, p.z_max = 2.8;
+      p.num_points = 1000;
       g.planes.push_back(p);
       r.planes.push_back(p.id);
     }
@@ -307,6 +318,22 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& b, const SyntheticSGra
         k.pose.translation() = p;
         g.keyframes.push_back(k);
       }
+  }
+
+  // Walls of rooms not taken, seen through doorways: planes of no room, each a part of its
+  // surface. Last, so that the draws above are the same with or without them.
+  for (int rid : config.seen_rooms) {
+    if (rid < 0 || rid >= static_cast<int>(b.rooms.size())) continue;
+    for (int sid : b.rooms[rid].surfaces) {
+      if (sid < 0 || sid >= static_cast<int>(b.surfaces.size()) || shared_plane.count(sid))
+        continue;
+      shared_plane[sid] = add_plane(b.surfaces[sid]);
+      sgraph::Plane& p = g.planes.back();
+      const double share = 0.4 + 0.6 * harsh_unit(harsh);
+      const double from = (1.0 - share) * harsh_unit(harsh);
+      const Eigen::Vector2d a = p.start, ab = p.end - p.start;
+      p.start = a + from * ab, p.end = a + (from + share) * ab;
+    }
   }
   return out;
 }

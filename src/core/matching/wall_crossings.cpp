@@ -137,7 +137,10 @@ int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, 
       }
       const auto entry = inside.find(surface.wall);  // out of it
       if (entry == inside.end()) continue;
-      if (entry->second.surface != i && !entry->second.near_door && !door &&
+      // Out by the other face: opposed normals (a face split into collinear pieces, in by one
+      // piece and out by the next, is the same face).
+      const bool other_face = s.surfaces[entry->second.surface].normal.dot(surface.normal) < -0.5;
+      if (other_face && !entry->second.near_door && !door &&
           (entry->second.at - at).norm() <= kMaxTraversal) {
         crossed.insert(surface.wall);
       }

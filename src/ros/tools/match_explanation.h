@@ -17,6 +17,7 @@
 #include "is_graphs/matching/candidate_graph.h"
 #include "is_graphs/matching/graph_matcher.h"
 #include "is_graphs/matching/room_descriptor.h"
+#include "is_graphs/matching/surface_evidence.h"
 #include "is_graphs/sgraph/evaluation.h"
 
 namespace is_graphs {
@@ -93,9 +94,25 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
         std::abs(geometry::NormalizeAngle(h.z() - xi.z())) * 180 / M_PI);
   };
   std::printf("match of this S-Graph: %s\n", matching::ToString(m.status));
-  if (m.status != matching::MatchStatus::kNone)
+  // Which wall planes the BIM explains under a motion (SurfaceEvidence: share of each extent).
+  const auto walls = matching::WallSegments(graph, config);
+  const matching::SurfaceEvidence evidence(building, config);
+  auto shares = [&](const Eigen::Isometry3d& pose) {
+    const Eigen::Vector3d h = geometry::ToXYYaw(pose);
+    const matching::Pose2 p{h.z(), h.head<2>()};
+    const int storey = building.surfaces.empty() ? 0 : building.surfaces.front().storey;
+    std::printf("    wall planes on BIM surfaces:");
+    for (const auto& w : walls) std::printf(" %d:%.2f", w.id, evidence.Share(w, p, storey));
+    std::printf("\n");
+  };
+  if (m.status != matching::MatchStatus::kNone) {
     print("best      ", m.bim_T_map, m.score, static_cast<int>(m.room_pairs.size()));
-  for (const auto& alt : m.alternatives) print("competitor", alt.bim_T_map, alt.score, alt.rooms);
+    shares(m.bim_T_map);
+  }
+  for (const auto& alt : m.alternatives) {
+    print("competitor", alt.bim_T_map, alt.score, alt.rooms);
+    shares(alt.bim_T_map);
+  }
   if (!std::getenv("IS_GRAPHS_EXPLAIN_PLANES")) return;
   for (const auto& p : graph.planes) {
     if (std::abs(p.plane.normal.z()) > 0.5) continue;  // the floor

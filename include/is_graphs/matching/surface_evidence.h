@@ -1,0 +1,66 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <unordered_map>
+#include <vector>
+
+#include "is_graphs/agraph/agraph.h"
+#include "is_graphs/matching/matcher_config.h"
+#include "is_graphs/matching/rigid_fit.h"
+#include "is_graphs/sgraph/sgraph.h"
+
+namespace is_graphs {
+namespace matching {
+
+/// A wall-grade S-plane as a segment in M: where its mapped points lie, the side it was seen
+/// from.
+struct WallSegment {
+  int id{0};  // S-plane id
+  Eigen::Vector2d a{Eigen::Vector2d::Zero()}, b{Eigen::Vector2d::Zero()};
+  Eigen::Vector2d normal{Eigen::Vector2d::UnitX()};  // horizontal, towards the sensor
+  double length{0.0};
+};
+
+/// The S-Graph's wall-grade planes: vertical, finite, at least surface_min_length long and
+/// surface_min_height tall (a low cupboard, a plane of a few points is not a wall).
+std::vector<WallSegment> WallSegments(const sgraph::SGraph& graph, const MatcherConfig& config);
+
+/// Wall planes as evidence for a hypothesis beyond its room pairs: the robot maps walls it does
+/// not enclose in a room (seen through a doorway, a corridor's far end, a façade). Under the
+/// true motion they lie on the BIM's wall-surfaces; under a wrong one fewer do. A plane's
+/// evidence is min(1, length / surface_full_length) x the share of its extent that lies on
+/// A-surfaces of the storey facing the same way (normal within angle_tolerance_deg, offset
+/// within offset_tolerance); a plane along several collinear A-surfaces (a corridor wall split
+/// at doors) counts them together. Only positive: clutter, walls built off the plan or not in it
+/// explain nothing but contradict nothing either. A-surfaces are hashed into 1 m cells per
+/// storey.
+class SurfaceEvidence {
+ public:
+  SurfaceEvidence() = default;
+  SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfig& config);
+
+  /// The share of `plane`'s extent (0..1) lying on A-surfaces of `storey` under `pose`.
+  double Share(const WallSegment& plane, const Pose2& pose, int storey) const;
+  /// Σ over `planes` of min(1, length / surface_full_length) x Share.
+  double Explained(const std::vector<const WallSegment*>& planes, const Pose2& pose,
+                   int storey) const;
+
+ private:
+  struct Surface {
+    Eigen::Vector2d a, b;
+    Eigen::Vector2d normal;  // out of the wall's material
+    double d;                // normal . p on the surface
+  };
+  struct Storey {
+    std::vector<Surface> surfaces;
+    std::unordered_map<long long, std::vector<int>> cells;  // 1 m cell -> surface indices
+  };
+
+  double cos_angle_{1.0};
+  double offset_tolerance_{0.3};
+  double full_length_{2.0};
+  std::unordered_map<int, Storey> storeys_;
+};
+
+}  // namespace matching
+}  // namespace is_graphs

@@ -1,0 +1,118 @@
+#include "is_graphs/matching/surface_evidence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+namespace is_graphs {
+namespace matching {
+namespace {
+
+constexpr double kCell = 1.0;        // m
+constexpr double kSampleStep = 0.5;  // m along an S-plane when looking up cells
+constexpr double kEndSlack = 0.2;    // m an A-surface's ends are extended by (noise, deviation)
+
+long long CellKey(long long ix, long long iy) { return (ix << 32) ^ (iy & 0xffffffffLL); }
+long long CellOf(double v) { return static_cast<long long>(std::floor(v / kCell)); }
+
+}  // namespace
+
+std::vector<WallSegment> WallSegments(const sgraph::SGraph& graph, const MatcherConfig& config) {
+  std::vector<WallSegment> out;
+  std::set<int> ids;
+  for (const auto& p : graph.planes) {
+    if (!p.plane.normal.allFinite() || !p.start.allFinite() || !p.end.allFinite() ||
+        !std::isfinite(p.z_min) || !std::isfinite(p.z_max))
+      continue;
+    const Eigen::Vector2d n = p.plane.normal.head<2>();
+    if (n.norm() < 0.95) continue;  // more than ~18 deg from vertical
+    const double length = (p.end - p.start).norm();
+    if (length < config.surface_min_length || p.z_max - p.z_min < config.surface_min_height)
+      continue;
+    if (!ids.insert(p.id).second) continue;  // the first of a duplicated id
+    out.push_back({p.id, p.start, p.end, n.normalized(), length});
+  }
+  return out;
+}
+
+SurfaceEvidence::SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfig& config)
+    : cos_angle_(std::cos(config.angle_tolerance_deg * M_PI / 180.0)),
+      offset_tolerance_(config.offset_tolerance),
+      full_length_(config.surface_full_length) {
+  for (const auto& s : graph.surfaces) {
+    const Eigen::Vector2d n = s.plane.normal.head<2>();
+    if (!s.start.allFinite() || !s.end.allFinite() || !n.allFinite() || n.norm() < 0.5 ||
+        s.Length() < 1e-3)
+      continue;
+    // On its own storey and on those of the rooms it bounds (a wall modelled on one storey
+    // may stand up through the next).
+    std::set<int> on{s.storey};
+    for (int r : s.rooms)
+      if (r >= 0 && r < static_cast<int>(graph.rooms.size())) on.insert(graph.rooms[r].storey);
+    const Eigen::Vector2d unit = n.normalized();
+    const double pad = offset_tolerance_ + kEndSlack;
+    const Eigen::Vector2d lo = s.start.cwiseMin(s.end).array() - pad;
+    const Eigen::Vector2d hi = s.start.cwiseMax(s.end).array() + pad;
+    for (int id : on) {
+      Storey& storey = storeys_[id];
+      const int index = static_cast<int>(storey.surfaces.size());
+      storey.surfaces.push_back({s.start, s.end, unit, unit.dot(0.5 * (s.start + s.end))});
+      // Every cell within offset_tolerance of the segment (its bounding box, widened).
+      for (long long ix = CellOf(lo.x()); ix <= CellOf(hi.x()); ++ix)
+        for (long long iy = CellOf(lo.y()); iy <= CellOf(hi.y()); ++iy)
+          storey.cells[CellKey(ix, iy)].push_back(index);
+    }
+  }
+}
+
+double SurfaceEvidence::Share(const WallSegment& plane, const Pose2& pose, int storey) const {
+  const auto found = storeys_.find(storey);
+  if (found == storeys_.end() || plane.length <= 0.0) return 0.0;
+  const Storey& st = found->second;
+  const Eigen::Vector2d a = pose.Apply(plane.a), b = pose.Apply(plane.b);
+  const Eigen::Vector2d n = pose.Rotate(plane.normal);
+  const Eigen::Vector2d middle = 0.5 * (a + b);
+  const Eigen::Vector2d along = (b - a) / plane.length;
+  std::vector<int> candidates;
+  const int samples = 1 + static_cast<int>(std::ceil(plane.length / kSampleStep));
+  for (int i = 0; i <= samples; ++i) {
+    const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(i) / samples);
+    const auto cell = st.cells.find(CellKey(CellOf(p.x()), CellOf(p.y())));
+    if (cell != st.cells.end())
+      candidates.insert(candidates.end(), cell->second.begin(), cell->second.end());
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  // The stretches of the plane (as distances from a along it) that lie on an A-surface.
+  std::vector<std::pair<double, double>> covered;
+  for (int i : candidates) {
+    const Surface& s = st.surfaces[i];
+    if (s.normal.dot(n) < cos_angle_ || std::abs(s.normal.dot(middle) - s.d) > offset_tolerance_)
+      continue;
+    double u0 = (s.a - a).dot(along), u1 = (s.b - a).dot(along);
+    if (u0 > u1) std::swap(u0, u1);
+    u0 = std::max(u0 - kEndSlack, 0.0);
+    u1 = std::min(u1 + kEndSlack, plane.length);
+    if (u1 > u0) covered.emplace_back(u0, u1);
+  }
+  std::sort(covered.begin(), covered.end());
+  double total = 0.0, reach = 0.0;
+  for (const auto& [u0, u1] : covered) {
+    const double from = std::max(u0, reach);
+    if (u1 > from) total += u1 - from;
+    reach = std::max(reach, u1);
+  }
+  return std::min(1.0, total / plane.length);
+}
+
+double SurfaceEvidence::Explained(const std::vector<const WallSegment*>& planes, const Pose2& pose,
+                                  int storey) const {
+  double sum = 0.0;
+  for (const WallSegment* p : planes)
+    sum += std::min(1.0, p->length / full_length_) * Share(*p, pose, storey);
+  return sum;
+}
+
+}  // namespace matching
+}  // namespace is_graphs
