@@ -36,15 +36,17 @@ struct MatchStats {
 ///     join in order of distance when a room pair of theirs is consistent with the seed pair
 ///     (pairwise, CLIPPER-style) and with the motion refitted so far; finally re-checked under
 ///     the motion fitted to everything, and scored by global affinity;
-///  3. score: the affinity, plus the wall planes outside its pairs (seen through doorways, a
-///     corridor's end) that lie on BIM wall-surfaces under its motion, less what contradicts
-///     it: BIM walls the robot's walked path (its keyframes) crosses away from every doorway;
+///  3. score: the affinity, plus the loose wall planes (of no S-room, or of S-rooms no
+///     hypothesis pairs: seen through doorways, a room built off the plan) that lie on BIM
+///     wall-surfaces under its motion, less what contradicts it: BIM walls the robot's walked
+///     path (its keyframes) crosses away from every doorway;
 ///  4. decision: hypotheses implying the same motion merged, the best score cluster
 ///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide);
 ///  5. doubt: a UNIQUE answer is re-checked by a second matcher whose room-centre gate is
 ///     doubt_centre_tolerance: where clutter moved the true room's centre out of the strict
 ///     gate, the truth is missing from the hypotheses and a lone wrong one would stand; a
-///     hypothesis of another motion it finds within the margin makes the answer AMBIGUOUS.
+///     hypothesis of another motion it finds within the margin makes the answer AMBIGUOUS
+///     (scored on the same loose planes: its own pairs would leave others loose).
 /// Incremental: an S-room unchanged since the last call keeps its candidates, and the last best
 /// motion is grown first. Not thread-safe; one matcher per thread.
 class GraphMatcher {
@@ -75,14 +77,22 @@ class GraphMatcher {
     std::vector<RoomCandidate> candidates;
   };
 
-  /// Steps 1-3 of Match: candidates (cached), hypotheses grown from seeds, scored.
-  std::vector<Hypothesis> Hypothesize(const sgraph::SGraph& graph,
-                                      const std::vector<RoomDescriptor>& s_rooms);
+  /// Steps 1-2 of Match: candidates (cached), hypotheses grown from seeds.
+  std::vector<Hypothesis> Hypothesize(const std::vector<RoomDescriptor>& s_rooms);
+  /// The wall planes weighed as evidence (SurfaceEvidence): those of no S-room and of S-rooms
+  /// none of `hypotheses` pairs.
+  std::vector<WallSegment> LooseWalls(const sgraph::SGraph& graph,
+                                      const std::vector<RoomDescriptor>& s_rooms,
+                                      const std::vector<Hypothesis>& hypotheses) const;
+  /// Step 3: scores `hypotheses` on their pairs, the `loose` planes and the walked path.
+  void Score(std::vector<Hypothesis>& hypotheses, const sgraph::SGraph& graph,
+             const std::vector<WallSegment>& loose) const;
   /// A hypothesis of another motion than `best` that the doubter finds within the margin.
   std::optional<Hypothesis> Doubt(const sgraph::SGraph& graph,
                                   const std::vector<RoomDescriptor>& s_rooms,
                                   const Hypothesis& best,
-                                  const std::vector<Eigen::Vector2d>& s_points);
+                                  const std::vector<Eigen::Vector2d>& s_points,
+                                  const std::vector<WallSegment>& loose);
 
   Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,
                   const std::vector<RoomDescriptor>& s_rooms,

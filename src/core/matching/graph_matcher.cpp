@@ -139,7 +139,10 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   if (s_rooms.empty()) out.warnings.push_back("no S-Graph rooms with usable planes to match");
   if (a_rooms_.empty() || s_rooms.empty()) return out;
 
-  std::vector<Hypothesis> hypotheses = Hypothesize(graph, s_rooms);
+  std::vector<Hypothesis> hypotheses = Hypothesize(s_rooms);
+  // One set of loose wall planes for this S-Graph, the doubter's hypotheses scored on it too.
+  const std::vector<WallSegment> loose = LooseWalls(graph, s_rooms, hypotheses);
+  Score(hypotheses, graph, loose);
   std::vector<Eigen::Vector2d> s_points;
   for (const auto& s : s_rooms) s_points.push_back(s.centre);
 
@@ -148,7 +151,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   stats_.hypotheses = static_cast<int>(hypotheses.size());
   std::optional<Hypothesis> doubt;
   if (decision.status == MatchStatus::kUnique && doubter_) {
-    doubt = Doubt(graph, s_rooms, hypotheses[decision.best], s_points);
+    doubt = Doubt(graph, s_rooms, hypotheses[decision.best], s_points, loose);
     if (doubt) decision.status = MatchStatus::kAmbiguous;
   }
   out.status = decision.status;
@@ -187,20 +190,30 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
 std::optional<Hypothesis> GraphMatcher::Doubt(const sgraph::SGraph& graph,
                                               const std::vector<RoomDescriptor>& s_rooms,
                                               const Hypothesis& best,
-                                              const std::vector<Eigen::Vector2d>& s_points) {
+                                              const std::vector<Eigen::Vector2d>& s_points,
+                                              const std::vector<WallSegment>& loose) {
   doubter_->stats_ = MatchStats{};  // its own bound on seeds, per call
-  std::vector<Hypothesis> doubts = doubter_->Hypothesize(graph, s_rooms);
+  std::vector<Hypothesis> doubts = doubter_->Hypothesize(s_rooms);
+  doubter_->Score(doubts, graph, loose);
   std::optional<Hypothesis> strongest;
+  std::vector<PathStep> path;  // walked once, if needed
   for (auto& d : doubts) {
     if (d.members.empty() || d.score < best.score - config_.ambiguity_margin) continue;
     if (d.storey == best.storey && SameMotion(best.pose, d.pose, s_points, config_)) continue;
+    // The doubter weighs the walked path only against its own best; a doubt must have paid for
+    // the walls it goes through before it competes with this best.
+    if (d.crossings < 0 && config_.wall_crossing_penalty > 0.0) {
+      if (path.empty()) path = WalkedPath(graph, config_.max_path_step);
+      d.crossings = crossings_.Count(path, d.pose, d.storey);
+      d.score -= config_.wall_crossing_penalty * d.crossings;
+      if (d.score < best.score - config_.ambiguity_margin) continue;
+    }
     if (!strongest || d.score > strongest->score) strongest = std::move(d);
   }
   return strongest;
 }
 
-std::vector<Hypothesis> GraphMatcher::Hypothesize(const sgraph::SGraph& graph,
-                                                  const std::vector<RoomDescriptor>& s_rooms) {
+std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescriptor>& s_rooms) {
   // 1. Local candidates, reused for S-rooms that did not change.
   std::map<int, CachedRoom> cache;
   std::vector<std::vector<RoomCandidate>> candidates(s_rooms.size());
@@ -245,31 +258,46 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const sgraph::SGraph& graph,
     hypotheses.push_back(Grow(seed->pose, seed, s_rooms, candidates));
   }
 
-  // 3. Scores: the pairs' affinity, plus the wall planes outside the pairs that the BIM
-  // explains, less the walls the walked path crosses under each motion.
+  return hypotheses;
+}
+
+std::vector<WallSegment> GraphMatcher::LooseWalls(const sgraph::SGraph& graph,
+                                                  const std::vector<RoomDescriptor>& s_rooms,
+                                                  const std::vector<Hypothesis>& hypotheses) const {
+  if (config_.surface_evidence_weight <= 0.0) return {};
+  // The wall planes of no S-room, and of S-rooms no hypothesis pairs (a room whose wall was
+  // built off the plan, or whose centre clutter moved out of the gate): the same set for every
+  // hypothesis. (A paired room's planes are weighed by its pair. Counting all planes let the
+  // partial fits of a mirror image pull apart on planes their pairs already weigh; counting
+  // those of the rooms a hypothesis leaves unpaired rewarded pairing fewer: both were tried,
+  // both gave wrong UNIQUE answers.)
+  std::set<int> paired;  // S-room ids some hypothesis pairs
+  for (const auto& h : hypotheses)
+    for (const auto& m : h.members) paired.insert(s_rooms[m.s_room].id);
+  std::set<int> in_paired_rooms;
+  for (const auto& room : graph.rooms)
+    if (paired.count(room.id)) in_paired_rooms.insert(room.planes.begin(), room.planes.end());
+  std::vector<WallSegment> loose;
+  for (auto& w : WallSegments(graph, config_))
+    if (!in_paired_rooms.count(w.id)) loose.push_back(std::move(w));
+  return loose;
+}
+
+void GraphMatcher::Score(std::vector<Hypothesis>& hypotheses, const sgraph::SGraph& graph,
+                         const std::vector<WallSegment>& loose) const {
+  // 3. Scores: the pairs' affinity, plus the loose wall planes the BIM explains, less the walls
+  // the walked path crosses under each motion.
   const std::vector<PathStep> path = WalkedPath(graph, config_.max_path_step);
-  const std::vector<WallSegment> walls = config_.surface_evidence_weight > 0.0
-                                             ? WallSegments(graph, config_)
-                                             : std::vector<WallSegment>{};
-  // The loose wall planes, in no S-room: the same set for every hypothesis. (A room's planes
-  // are weighed by its pair. Counting all planes lets the partial fits of a mirror image, or of
-  // a cluttered twin, pull apart on planes their pairs already weigh; counting those of the
-  // rooms a hypothesis leaves unpaired rewards pairing fewer: both were tried, both gave wrong
-  // or unfounded UNIQUE answers.)
-  std::set<int> in_rooms;
-  for (const auto& room : graph.rooms) in_rooms.insert(room.planes.begin(), room.planes.end());
-  std::vector<const WallSegment*> loose;
-  for (const auto& w : walls)
-    if (!in_rooms.count(w.id)) loose.push_back(&w);
+  std::vector<const WallSegment*> planes;
+  for (const auto& w : loose) planes.push_back(&w);
   auto evidence = [&](const Hypothesis& h) {
-    return loose.empty()
+    return planes.empty()
                ? 0.0
-               : config_.surface_evidence_weight * surfaces_.Explained(loose, h.pose, h.storey);
+               : config_.surface_evidence_weight * surfaces_.Explained(planes, h.pose, h.storey);
   };
   ScoreHypotheses(
       hypotheses, evidence,
       [&](const Hypothesis& h) { return crossings_.Count(path, h.pose, h.storey); }, config_);
-  return hypotheses;
 }
 
 }  // namespace matching
