@@ -125,7 +125,9 @@ class MatcherNode {
       ROS_WARN("matcher_node: A-Graph: %s", w.c_str());
     ROS_INFO("matcher_node: A-Graph '%s' with %zu rooms (%zu usable)", msg.building.c_str(),
              a_graph_.rooms.size(), matcher_.ARooms().size());
-    if (last_s_) MatchAndPublish(*last_s_);  // a new building: match the last S-Graph again
+    // A new building: match the last S-Graph again. (Through a copy of the pointer: matching
+    // replaces last_s_, which must not free the message being matched.)
+    if (const is_graphs::SGraph::ConstPtr last = last_s_) MatchAndPublish(*last);
   }
 
   void MatchAndPublish(const is_graphs::SGraph& msg) {
