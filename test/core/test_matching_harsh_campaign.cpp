@@ -140,6 +140,30 @@ TEST(MatchingHarshCampaign, ALoneHypothesisIsDoubtedWhereTheTruthMissedTheCentre
   EXPECT_TRUE(w.status != MatchStatus::kUnique || testing::MatchIsCorrect(w, s, &why)) << why;
 }
 
+// The doubter weighs the walked path only against its own best; a doubt of another motion that
+// walks through walls must pay for them before it competes with the main matcher's best. Trial
+// 205 of the harsh campaign (default seed; FZK-Haus, 3 rooms): a doubt whose crossings were left
+// uncounted held the true answer at AMBIGUOUS (as on H1's short bag, which never localized).
+TEST(MatchingHarshCampaign, ADoubtPaysForTheWallsItWalksThrough) {
+  const auto buildings = testing::CampaignBuildings();
+  if (buildings.size() < 10) GTEST_SKIP() << "needs the ten campaign buildings";
+  std::mt19937_64 rng(20261124ull);
+  SyntheticSGraph s;
+  size_t b = 0;
+  for (int trial = 0; trial <= 205; ++trial) {
+    b = std::uniform_int_distribution<size_t>(0, buildings.size() - 1)(rng);
+    const SyntheticSGraphConfig c = HarshTrial(*buildings[b].second, rng);
+    if (trial == 205) s = MakeSyntheticSGraph(*buildings[b].second, c);
+  }
+  ASSERT_EQ(buildings[b].first, "AC20-FZK-Haus.ifc");
+  GraphMatcher matcher;
+  matcher.SetAGraph(*buildings[b].second);
+  const GraphMatch m = matcher.Match(s.graph);
+  std::string why;
+  EXPECT_EQ(m.status, MatchStatus::kUnique) << m.hypotheses << " hypotheses";
+  EXPECT_TRUE(m.status != MatchStatus::kUnique || testing::MatchIsCorrect(m, s, &why)) << why;
+}
+
 }  // namespace
 }  // namespace matching
 }  // namespace is_graphs
