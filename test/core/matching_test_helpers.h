@@ -45,6 +45,19 @@ inline const agraph::AGraph* LoadBuildingOnce(const std::string& path, std::stri
   return (cache[path] = std::move(graph)).get();
 }
 
+/// A vertical wall-surface of a hand-made A-Graph: from a to b, its normal out of the material.
+inline agraph::WallSurface MakeSurface(int id, int wall, int storey, const Eigen::Vector2d& a,
+                                       const Eigen::Vector2d& b, const Eigen::Vector2d& normal) {
+  agraph::WallSurface s;
+  s.plane = geometry::Plane(Eigen::Vector3d(normal.x(), normal.y(), 0.0), normal.dot(a));
+  s.id = id;
+  s.wall = wall;
+  s.storey = storey;
+  s.start = a;
+  s.end = b;
+  return s;
+}
+
 inline std::string ProjectBim(const std::string& name) {
   return std::string(IS_GRAPHS_SOURCE_DIR) + "/bim/" + name;
 }

@@ -63,6 +63,19 @@ SyntheticSGraphConfig HarshTrial(const agraph::AGraph& g, std::mt19937_64& rng) 
   return c;
 }
 
+/// Trial `trial` of the harsh campaign with `seed`, as the campaign makes it; its building's
+/// index into `buildings` in *building.
+SyntheticSGraph ReplayTrial(
+    const std::vector<std::pair<std::string, const agraph::AGraph*>>& buildings, std::uint64_t seed,
+    int trial, size_t* building) {
+  std::mt19937_64 rng(seed);
+  for (int k = 0;; ++k) {
+    *building = std::uniform_int_distribution<size_t>(0, buildings.size() - 1)(rng);
+    const SyntheticSGraphConfig c = HarshTrial(*buildings[*building].second, rng);
+    if (k == trial) return MakeSyntheticSGraph(*buildings[*building].second, c);
+  }
+}
+
 TEST(MatchingHarshCampaign, ThousandHarshTrialsWithoutAWrongUniqueMatch) {
   const auto buildings = testing::CampaignBuildings();
   if (buildings.empty()) GTEST_SKIP() << "no building could be loaded (converter missing?)";
@@ -110,14 +123,8 @@ TEST(MatchingHarshCampaign, ThousandHarshTrialsWithoutAWrongUniqueMatch) {
 TEST(MatchingHarshCampaign, ALoneHypothesisIsDoubtedWhereTheTruthMissedTheCentreGate) {
   const auto buildings = testing::CampaignBuildings();
   if (buildings.size() < 10) GTEST_SKIP() << "needs the ten campaign buildings";
-  std::mt19937_64 rng(2);
-  SyntheticSGraph s;
   size_t b = 0;
-  for (int trial = 0; trial <= 946; ++trial) {
-    b = std::uniform_int_distribution<size_t>(0, buildings.size() - 1)(rng);
-    const SyntheticSGraphConfig c = HarshTrial(*buildings[b].second, rng);
-    if (trial == 946) s = MakeSyntheticSGraph(*buildings[b].second, c);
-  }
+  const SyntheticSGraph s = ReplayTrial(buildings, 2, 946, &b);
   ASSERT_EQ(buildings[b].first, "rotated.ifc");
   // The wall planes are weighed apart: here they tell the truth from the lone wrong fit too,
   // and the doubt is tested on its own (as the room pairs alone would have it).
@@ -147,14 +154,8 @@ TEST(MatchingHarshCampaign, ALoneHypothesisIsDoubtedWhereTheTruthMissedTheCentre
 TEST(MatchingHarshCampaign, ADoubtPaysForTheWallsItWalksThrough) {
   const auto buildings = testing::CampaignBuildings();
   if (buildings.size() < 10) GTEST_SKIP() << "needs the ten campaign buildings";
-  std::mt19937_64 rng(20261124ull);
-  SyntheticSGraph s;
   size_t b = 0;
-  for (int trial = 0; trial <= 205; ++trial) {
-    b = std::uniform_int_distribution<size_t>(0, buildings.size() - 1)(rng);
-    const SyntheticSGraphConfig c = HarshTrial(*buildings[b].second, rng);
-    if (trial == 205) s = MakeSyntheticSGraph(*buildings[b].second, c);
-  }
+  const SyntheticSGraph s = ReplayTrial(buildings, 20261124ull, 205, &b);
   ASSERT_EQ(buildings[b].first, "AC20-FZK-Haus.ifc");
   GraphMatcher matcher;
   matcher.SetAGraph(*buildings[b].second);

@@ -21,14 +21,7 @@ using testing::RoomByName;
 
 agraph::WallSurface Surface(int id, int wall, int storey, Eigen::Vector2d a, Eigen::Vector2d b,
                             Eigen::Vector2d normal) {
-  agraph::WallSurface s;
-  s.plane = geometry::Plane(Eigen::Vector3d(normal.x(), normal.y(), 0.0), normal.dot(a));
-  s.id = id;
-  s.wall = wall;
-  s.storey = storey;
-  s.start = a;
-  s.end = b;
-  return s;
+  return testing::MakeSurface(id, wall, storey, a, b, normal);
 }
 
 // Two rooms side by side, split by a 10 cm wall at x = 4 (y 0..5) with a 0.9 m door at y = 2.5;

@@ -22,13 +22,7 @@ using testing::RoomByName;
 
 agraph::WallSurface Surface(int id, int storey, Eigen::Vector2d a, Eigen::Vector2d b,
                             Eigen::Vector2d normal) {
-  agraph::WallSurface s;
-  s.plane = geometry::Plane(Eigen::Vector3d(normal.x(), normal.y(), 0.0), normal.dot(a));
-  s.id = id;
-  s.storey = storey;
-  s.start = a;
-  s.end = b;
-  return s;
+  return testing::MakeSurface(id, -1, storey, a, b, normal);
 }
 
 // A wall face at y = 0 facing +y, split at a door (x 0..4 and 5..9); a face at x = 10 facing -x
