@@ -76,7 +76,7 @@ TEST(SurfaceEvidence, ShareOfAPlaneLyingOnTheBimsSurfaces) {
   EXPECT_EQ(evidence.Share(east, identity, 2), 0.0);
   // Explained weighs each share by min(1, length / surface_full_length).
   const WallSegment short_one = Segment({1.0, 0.0}, {2.0, 0.0}, {0, 1});
-  EXPECT_NEAR(evidence.Explained({&short_one, &east, &off}, identity, 0), 0.5 + 1.0, 1e-9);
+  EXPECT_NEAR(evidence.Explained({short_one, east, off}, identity, 0), 0.5 + 1.0, 1e-9);
 }
 
 TEST(SurfaceEvidence, OnlyWallGradePlanesCount) {

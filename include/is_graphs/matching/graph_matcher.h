@@ -84,14 +84,14 @@ class GraphMatcher {
   std::vector<WallSegment> LooseWalls(const sgraph::SGraph& graph,
                                       const std::vector<RoomDescriptor>& s_rooms,
                                       const std::vector<Hypothesis>& hypotheses) const;
-  /// Step 3: scores `hypotheses` on their pairs, the `loose` planes and the walked path.
-  void Score(std::vector<Hypothesis>& hypotheses, const sgraph::SGraph& graph,
+  /// Step 3: scores `hypotheses` on their pairs, the `loose` planes and the walked `path`.
+  void Score(std::vector<Hypothesis>& hypotheses, const std::vector<PathStep>& path,
              const std::vector<WallSegment>& loose) const;
   /// A hypothesis of another motion than `best` that the doubter finds within the margin.
-  std::optional<Hypothesis> Doubt(const sgraph::SGraph& graph,
-                                  const std::vector<RoomDescriptor>& s_rooms,
+  std::optional<Hypothesis> Doubt(const std::vector<RoomDescriptor>& s_rooms,
                                   const Hypothesis& best,
                                   const std::vector<Eigen::Vector2d>& s_points,
+                                  const std::vector<PathStep>& path,
                                   const std::vector<WallSegment>& loose);
 
   Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,

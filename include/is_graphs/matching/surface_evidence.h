@@ -42,8 +42,7 @@ class SurfaceEvidence {
   /// The share of `plane`'s extent (0..1) lying on A-surfaces of `storey` under `pose`.
   double Share(const WallSegment& plane, const Pose2& pose, int storey) const;
   /// Σ over `planes` of min(1, length / surface_full_length) x Share.
-  double Explained(const std::vector<const WallSegment*>& planes, const Pose2& pose,
-                   int storey) const;
+  double Explained(const std::vector<WallSegment>& planes, const Pose2& pose, int storey) const;
 
  private:
   struct Surface {

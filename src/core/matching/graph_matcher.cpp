@@ -142,7 +142,8 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   std::vector<Hypothesis> hypotheses = Hypothesize(s_rooms);
   // One set of loose wall planes for this S-Graph, the doubter's hypotheses scored on it too.
   const std::vector<WallSegment> loose = LooseWalls(graph, s_rooms, hypotheses);
-  Score(hypotheses, graph, loose);
+  const std::vector<PathStep> path = WalkedPath(graph, config_.max_path_step);
+  Score(hypotheses, path, loose);
   std::vector<Eigen::Vector2d> s_points;
   for (const auto& s : s_rooms) s_points.push_back(s.centre);
 
@@ -151,7 +152,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   stats_.hypotheses = static_cast<int>(hypotheses.size());
   std::optional<Hypothesis> doubt;
   if (decision.status == MatchStatus::kUnique && doubter_) {
-    doubt = Doubt(graph, s_rooms, hypotheses[decision.best], s_points, loose);
+    doubt = Doubt(s_rooms, hypotheses[decision.best], s_points, path, loose);
     if (doubt) decision.status = MatchStatus::kAmbiguous;
   }
   out.status = decision.status;
@@ -187,23 +188,21 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   return out;
 }
 
-std::optional<Hypothesis> GraphMatcher::Doubt(const sgraph::SGraph& graph,
-                                              const std::vector<RoomDescriptor>& s_rooms,
+std::optional<Hypothesis> GraphMatcher::Doubt(const std::vector<RoomDescriptor>& s_rooms,
                                               const Hypothesis& best,
                                               const std::vector<Eigen::Vector2d>& s_points,
+                                              const std::vector<PathStep>& path,
                                               const std::vector<WallSegment>& loose) {
   doubter_->stats_ = MatchStats{};  // its own bound on seeds, per call
   std::vector<Hypothesis> doubts = doubter_->Hypothesize(s_rooms);
-  doubter_->Score(doubts, graph, loose);
+  doubter_->Score(doubts, path, loose);
   std::optional<Hypothesis> strongest;
-  std::vector<PathStep> path;  // walked once, if needed
   for (auto& d : doubts) {
     if (d.members.empty() || d.score < best.score - config_.ambiguity_margin) continue;
     if (d.storey == best.storey && SameMotion(best.pose, d.pose, s_points, config_)) continue;
     // The doubter weighs the walked path only against its own best; a doubt must have paid for
     // the walls it goes through before it competes with this best.
     if (d.crossings < 0 && config_.wall_crossing_penalty > 0.0) {
-      if (path.empty()) path = WalkedPath(graph, config_.max_path_step);
       d.crossings = crossings_.Count(path, d.pose, d.storey);
       d.score -= config_.wall_crossing_penalty * d.crossings;
       if (d.score < best.score - config_.ambiguity_margin) continue;
@@ -283,17 +282,14 @@ std::vector<WallSegment> GraphMatcher::LooseWalls(const sgraph::SGraph& graph,
   return loose;
 }
 
-void GraphMatcher::Score(std::vector<Hypothesis>& hypotheses, const sgraph::SGraph& graph,
+void GraphMatcher::Score(std::vector<Hypothesis>& hypotheses, const std::vector<PathStep>& path,
                          const std::vector<WallSegment>& loose) const {
   // 3. Scores: the pairs' affinity, plus the loose wall planes the BIM explains, less the walls
   // the walked path crosses under each motion.
-  const std::vector<PathStep> path = WalkedPath(graph, config_.max_path_step);
-  std::vector<const WallSegment*> planes;
-  for (const auto& w : loose) planes.push_back(&w);
   auto evidence = [&](const Hypothesis& h) {
-    return planes.empty()
+    return loose.empty()
                ? 0.0
-               : config_.surface_evidence_weight * surfaces_.Explained(planes, h.pose, h.storey);
+               : config_.surface_evidence_weight * surfaces_.Explained(loose, h.pose, h.storey);
   };
   ScoreHypotheses(
       hypotheses, evidence,

@@ -106,11 +106,11 @@ double SurfaceEvidence::Share(const WallSegment& plane, const Pose2& pose, int s
   return std::min(1.0, total / plane.length);
 }
 
-double SurfaceEvidence::Explained(const std::vector<const WallSegment*>& planes, const Pose2& pose,
+double SurfaceEvidence::Explained(const std::vector<WallSegment>& planes, const Pose2& pose,
                                   int storey) const {
   double sum = 0.0;
-  for (const WallSegment* p : planes)
-    sum += std::min(1.0, p->length / full_length_) * Share(*p, pose, storey);
+  for (const WallSegment& p : planes)
+    sum += std::min(1.0, p.length / full_length_) * Share(p, pose, storey);
   return sum;
 }
 
