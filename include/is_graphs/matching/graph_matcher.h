@@ -8,6 +8,7 @@
 
 #include "is_graphs/agraph/agraph.h"
 #include "is_graphs/matching/candidate_graph.h"
+#include "is_graphs/matching/candidate_index.h"
 #include "is_graphs/matching/graph_match.h"
 #include "is_graphs/matching/hypothesis_scoring.h"
 #include "is_graphs/matching/matcher_config.h"
@@ -96,7 +97,8 @@ class GraphMatcher {
 
   Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,
                   const std::vector<RoomDescriptor>& s_rooms,
-                  const std::vector<std::vector<RoomCandidate>>& candidates) const;
+                  const std::vector<std::vector<RoomCandidate>>& candidates,
+                  const CandidateIndex& index) const;
 
   MatcherConfig config_;
   bool has_agraph_{false};

@@ -22,21 +22,34 @@ PointNormal Foot(const RoomDescriptor& room, int plane) {
 }
 
 /// Drops surface pairs inconsistent with the others (most conflicts first) until all agree.
+/// Whether two pairs conflict does not depend on the others: tested once per two.
 void PruneInconsistent(const RoomDescriptor& s, const RoomDescriptor& a, double angle_tol,
                        double distance_tol, std::vector<std::pair<int, int>>& pairs) {
-  while (pairs.size() >= 2) {
-    std::vector<int> conflicts(pairs.size(), 0);
-    for (size_t i = 0; i < pairs.size(); ++i)
-      for (size_t j = i + 1; j < pairs.size(); ++j) {
-        const double w = SurfacePairConsistency(Foot(s, pairs[i].first), Foot(s, pairs[j].first),
-                                                Foot(a, pairs[i].second), Foot(a, pairs[j].second),
-                                                angle_tol, distance_tol);
-        if (w == 0.0) ++conflicts[i], ++conflicts[j];
-      }
-    const auto worst = std::max_element(conflicts.begin(), conflicts.end());
-    if (*worst == 0) return;
-    pairs.erase(pairs.begin() + (worst - conflicts.begin()));
+  const size_t n = pairs.size();
+  if (n < 2) return;
+  std::vector<char> conflict(n * n, 0);
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      conflict[i * n + j] = conflict[j * n + i] =
+          SurfacePairConsistency(Foot(s, pairs[i].first), Foot(s, pairs[j].first),
+                                 Foot(a, pairs[i].second), Foot(a, pairs[j].second), angle_tol,
+                                 distance_tol) == 0.0;
+  std::vector<int> alive(n);  // indices into the original pairs, in order
+  for (size_t i = 0; i < n; ++i) alive[i] = static_cast<int>(i);
+  while (alive.size() >= 2) {
+    int worst = -1, worst_count = 0;
+    for (size_t x = 0; x < alive.size(); ++x) {
+      int count = 0;
+      for (int y : alive) count += conflict[alive[x] * n + y];
+      if (count > worst_count) worst = static_cast<int>(x), worst_count = count;
+    }
+    if (worst < 0) break;
+    alive.erase(alive.begin() + worst);
   }
+  if (alive.size() == n) return;
+  std::vector<std::pair<int, int>> kept;
+  for (int i : alive) kept.push_back(pairs[i]);
+  pairs = std::move(kept);
 }
 
 }  // namespace
@@ -55,16 +68,19 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
                             bool full_rank, const EvaluationTolerances& tol) {
   PairEvaluation out;
   const double min_cos = std::cos(tol.angle_rad);
-  const Eigen::Vector2d centre_b = pose.Apply(s.centre);
+  const Eigen::Matrix2d rot = pose.R();  // once: the loops below turn every plane
+  const Eigen::Vector2d centre_b = rot * s.centre + pose.t;
   if (full_rank) {
     if ((centre_b - a.centre).norm() > tol.centre) return out;
   } else if (!a.polygon.empty() && SignedDistanceToPolygon(a.polygon, centre_b) > tol.centre) {
     return out;
   }
   std::vector<bool> a_used(a.planes.size(), false);
+  out.surfaces.reserve(s.planes.size());
+  out.residuals.reserve(s.planes.size());
   double sum_sq = 0.0;
   for (size_t i = 0; i < s.planes.size(); ++i) {
-    const Eigen::Vector2d n = pose.Rotate(s.planes[i].normal);
+    const Eigen::Vector2d n = rot * s.planes[i].normal;
     const double d = s.planes[i].d + n.dot(pose.t);
     const double r = n.dot(a.centre) - d;  // A-centre in front of the moved S-plane
     int best = -1;
@@ -90,7 +106,7 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   for (size_t j = 0; j < a.planes.size(); ++j) {
     bool relevant = full_rank;
     for (const auto& p : s.planes)
-      relevant = relevant || std::abs(pose.Rotate(p.normal).dot(a.planes[j].normal)) >= min_cos;
+      relevant = relevant || std::abs((rot * p.normal).dot(a.planes[j].normal)) >= min_cos;
     if (!relevant) continue;
     const double len = a.planes[j].length > 0.0 ? a.planes[j].length : 1.0;
     total += len;
@@ -124,6 +140,10 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
       break;
     }
 
+  std::vector<double> yaws;  // reused for every A-room, as are the vectors below
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<PlaneCorrespondence> planes;
+  std::vector<PlaneFeature> matched_s;
   for (size_t ai = 0; ai < a_rooms.size(); ++ai) {
     const RoomDescriptor& a = a_rooms[ai];
     // Structural pre-check (cheap): enough S-planes have an A-surface at their distance.
@@ -136,7 +156,7 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
         }
     if (compatible < needed) continue;
 
-    std::vector<double> yaws;
+    yaws.clear();
     for (int anchor : anchors)
       for (const auto& q : a.planes) {
         if (std::abs(s.planes[anchor].r - q.r) > r_tol) continue;
@@ -148,10 +168,10 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
 
     const size_t first_of_room = out.size();
     for (double yaw : yaws) {
-      const Pose2 rot{yaw, Eigen::Vector2d::Zero()};
-      std::vector<std::pair<int, int>> pairs;
+      const Eigen::Matrix2d rot = Pose2{yaw, Eigen::Vector2d::Zero()}.R();
+      pairs.clear();
       for (size_t i = 0; i < s.planes.size(); ++i) {
-        const Eigen::Vector2d n = rot.Rotate(s.planes[i].normal);
+        const Eigen::Vector2d n = rot * s.planes[i].normal;
         int best = -1;
         double best_err = r_tol;
         for (size_t j = 0; j < a.planes.size(); ++j) {
@@ -164,8 +184,8 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
       PruneInconsistent(s, a, 2.0 * tol.angle_rad, 2.0 * r_tol, pairs);
       if (static_cast<int>(pairs.size()) < needed) continue;
 
-      std::vector<PlaneCorrespondence> planes;
-      std::vector<PlaneFeature> matched_s;
+      planes.clear();
+      matched_s.clear();
       for (const auto& [i, j] : pairs) {
         planes.push_back(
             {s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d, a.centre});

@@ -52,7 +52,8 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
 
 Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
                               const std::vector<RoomDescriptor>& s_rooms,
-                              const std::vector<std::vector<RoomCandidate>>& candidates) const {
+                              const std::vector<std::vector<RoomCandidate>>& candidates,
+                              const CandidateIndex& index) const {
   Hypothesis h;
   h.pose = start;
   std::vector<bool> a_taken(a_rooms_.size(), false);
@@ -78,6 +79,8 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
     return (s_rooms[x].centre - anchor).norm() < (s_rooms[y].centre - anchor).norm();
   });
   const double yaw_tol = config_.yaw_tolerance_deg * kDegToRad;
+  const Eigen::Matrix2d seed_turn = Pose2{seed_corr.yaw, Eigen::Vector2d::Zero()}.R();
+  std::vector<int> near;  // the candidates of an S-room that can be consistent with the seed
   for (int si : order) {
     if (seed && si == seed->s_room) continue;
     const RoomDescriptor& s = s_rooms[si];
@@ -85,7 +88,17 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
         EvaluationTolerances::From(config_, config_.lever_arm_slack * (s.centre - anchor).norm());
     const RoomCandidate* best = nullptr;
     PairEvaluation best_eval;
-    for (const RoomCandidate& c : candidates[si]) {
+    if (seed) {
+      const Eigen::Vector2d ds = s.centre - seed_corr.s_centre;
+      index.Near(si, seed_corr.a_centre + seed_turn * ds,
+                 ConsistencyRadius(ds.norm(), config_.centre_tolerance, config_.lever_arm_slack),
+                 &near);
+    } else {
+      near.resize(candidates[si].size());
+      std::iota(near.begin(), near.end(), 0);
+    }
+    for (int k : near) {
+      const RoomCandidate& c = candidates[si][k];
       if (AngleDistance(c.pose.yaw, h.pose.yaw) > yaw_tol) continue;
       if (c.full_rank && a_taken[c.a_room]) continue;
       const RoomDescriptor& a = a_rooms_[c.a_room];
@@ -240,21 +253,25 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
     return x->quality > y->quality;
   });
   std::vector<Hypothesis> hypotheses;
-  if (last_best_) hypotheses.push_back(Grow(*last_best_, nullptr, s_rooms, candidates));
+  const CandidateIndex index(candidates, a_rooms_);
+  // The hypotheses holding each room pair (s_room * |A| + a_room), to find covered seeds.
+  std::vector<std::vector<int>> holding(s_rooms.size() * a_rooms_.size());
+  auto add = [&](Hypothesis h) {
+    for (const auto& m : h.members)
+      holding[m.s_room * a_rooms_.size() + m.a_room].push_back(static_cast<int>(hypotheses.size()));
+    hypotheses.push_back(std::move(h));
+  };
+  if (last_best_) add(Grow(*last_best_, nullptr, s_rooms, candidates, index));
   for (const RoomCandidate* seed : seeds) {
     if (stats_.seeds >= config_.max_seeds) break;
-    const bool covered =
-        std::any_of(hypotheses.begin(), hypotheses.end(), [&](const Hypothesis& h) {
-          return std::any_of(h.members.begin(), h.members.end(),
-                             [&](const MemberPair& m) {
-                               return m.s_room == seed->s_room && m.a_room == seed->a_room;
-                             }) &&
-                 h.storey == a_rooms_[seed->a_room].storey &&
-                 SameMotion(h.pose, seed->pose, {s_rooms[seed->s_room].centre}, config_);
-        });
+    const auto& holders = holding[seed->s_room * a_rooms_.size() + seed->a_room];
+    const bool covered = std::any_of(holders.begin(), holders.end(), [&](int k) {
+      return hypotheses[k].storey == a_rooms_[seed->a_room].storey &&
+             SameMotion(hypotheses[k].pose, seed->pose, {s_rooms[seed->s_room].centre}, config_);
+    });
     if (covered) continue;
     ++stats_.seeds;
-    hypotheses.push_back(Grow(seed->pose, seed, s_rooms, candidates));
+    add(Grow(seed->pose, seed, s_rooms, candidates, index));
   }
 
   return hypotheses;

@@ -44,6 +44,10 @@ RigidFit FitMembers(const std::vector<MemberPair>& members,
                     const std::vector<RoomDescriptor>& a_rooms, const MatcherConfig& config) {
   std::vector<PlaneCorrespondence> planes;
   std::vector<PointCorrespondence> points;
+  size_t n = 0;
+  for (const auto& m : members) n += m.evaluation.surfaces.size();
+  planes.reserve(n);
+  points.reserve(members.size());
   for (const auto& m : members) {
     const RoomDescriptor& s = s_rooms[m.s_room];
     const RoomDescriptor& a = a_rooms[m.a_room];
@@ -59,8 +63,9 @@ bool SameMotion(const Pose2& a, const Pose2& b, const std::vector<Eigen::Vector2
                 const MatcherConfig& config) {
   if (AngleDistance(a.yaw, b.yaw) > config.cluster_yaw_deg * M_PI / 180.0) return false;
   if (points.empty()) return (a.t - b.t).norm() <= config.cluster_translation;
+  const Eigen::Matrix2d ra = a.R(), rb = b.R();  // once, not per point
   return std::all_of(points.begin(), points.end(), [&](const Eigen::Vector2d& p) {
-    return (a.Apply(p) - b.Apply(p)).norm() <= config.cluster_translation;
+    return ((ra * p + a.t) - (rb * p + b.t)).norm() <= config.cluster_translation;
   });
 }
 
@@ -83,9 +88,11 @@ Decision Decide(std::vector<Hypothesis>& hypotheses, const std::vector<Eigen::Ve
                      if (x.score != y.score) return x.score > y.score;
                      return key(x) < key(y);
                    });
-  // Cluster by motion: a hypothesis implying the motion of a better one is that one.
+  // Cluster by motion: a hypothesis implying the motion of a better one is that one. Only the
+  // clusters within the margin of the best matter (they come first: sorted by score).
   std::vector<int> clusters;
   for (size_t i = 0; i < hypotheses.size(); ++i) {
+    if (hypotheses[i].score < hypotheses.front().score - config.ambiguity_margin) break;
     const bool known = std::any_of(clusters.begin(), clusters.end(), [&](int c) {
       return hypotheses[c].storey == hypotheses[i].storey &&
              SameMotion(hypotheses[c].pose, hypotheses[i].pose, s_points, config);

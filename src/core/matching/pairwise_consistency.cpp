@@ -8,8 +8,9 @@ namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
 
-double SignedAngle(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+/// The turn from a to b as a (cos, sin) pair scaled by |a||b|: a complex a̅·b.
+Eigen::Vector2d Turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return {a.dot(b), a.x() * b.y() - a.y() * b.x()};
 }
 
 double Gaussian(double error, double tolerance) {
@@ -23,8 +24,10 @@ double Gaussian(double error, double tolerance) {
 double SurfacePairConsistency(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
                               const PointNormal& a2, double angle_tolerance_rad,
                               double distance_tolerance) {
+  // The S turn less the A turn, in one atan2: the angle of turn_s · conj(turn_a).
+  const Eigen::Vector2d ts = Turn(s1.normal, s2.normal), ta = Turn(a1.normal, a2.normal);
   const double angle_error =
-      AngleDistance(SignedAngle(s1.normal, s2.normal), SignedAngle(a1.normal, a2.normal));
+      std::abs(std::atan2(ts.y() * ta.x() - ts.x() * ta.y(), ts.x() * ta.x() + ts.y() * ta.y()));
   const double distance_error = (s1.point - s2.point).norm() - (a1.point - a2.point).norm();
   return Gaussian(angle_error, angle_tolerance_rad) * Gaussian(distance_error, distance_tolerance);
 }

@@ -75,7 +75,9 @@ RigidFit FitYawTranslation(const std::vector<PlaneCorrespondence>& planes,
     a += wo * n * n.transpose();
     b += wo * n * y;
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> plane_only(a);
+  // computeDirect: the closed form of a 2×2 (the iterative solver was a tenth of a match).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> plane_only;
+  plane_only.computeDirect(a);
   fit.planes_determine_translation =
       planes.size() >= 2 && plane_only.eigenvalues()(0) > 0.05 * wo;  // normals >~ 13° apart
   if (!fit.planes_determine_translation && a.trace() > 0.0) {
@@ -90,7 +92,8 @@ RigidFit FitYawTranslation(const std::vector<PlaneCorrespondence>& planes,
     a += w * Eigen::Matrix2d::Identity();
     b += w * (p.a_point - r * p.s_point);
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(a);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+  eig.computeDirect(a);
   fit.translation_determined = eig.eigenvalues()(0) > 1e-9;
   if (fit.translation_determined) {
     fit.pose.t = a.ldlt().solve(b);
