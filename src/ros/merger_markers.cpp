@@ -68,12 +68,15 @@ visualization_msgs::MarkerArray BuildMergerMarkers(const agraph::AGraph& a_graph
     edges.points.push_back(ToPoint(s->second));
     edges.points.push_back(ToPoint(a_graph.rooms[a_id].center));
   }
-  for (const auto& [s_id, a_id] : pairs.surfaces) {
+  for (const auto& [s_id, a_ids] : pairs.surfaces) {
     auto s = s_plane_mid.find(s_id);
-    auto a = a_surface_mid.find(a_id);
-    if (s == s_plane_mid.end() || a == a_surface_mid.end()) continue;
-    edges.points.push_back(ToPoint(s->second));
-    edges.points.push_back(ToPoint(a->second));
+    if (s == s_plane_mid.end()) continue;
+    for (int a_id : a_ids) {
+      auto a = a_surface_mid.find(a_id);
+      if (a == a_surface_mid.end()) continue;
+      edges.points.push_back(ToPoint(s->second));
+      edges.points.push_back(ToPoint(a->second));
+    }
   }
   visualization_msgs::MarkerArray out;
   for (auto* m : {&a_surfaces, &a_rooms, &s_planes, &s_rooms, &path, &edges})

@@ -23,6 +23,9 @@ struct PlaneFeature {
   double d{0.0};
   double r{0.0};
   double length{0.0};  // horizontal extent; 0 when unknown
+  // A-Graph: the ids of every coplanar wall-surface merged into this feature (a face split by
+  // the converter, a corridor wall split by doorways), `id` among them; empty for S-planes.
+  std::vector<int> pieces;
 };
 
 /// A room of either graph, reduced to what matching uses, in its own frame (B or M).

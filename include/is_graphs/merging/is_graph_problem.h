@@ -13,12 +13,13 @@
 namespace is_graphs {
 namespace merging {
 
-/// The match pairs a merge uses: S-Graph id -> A-Graph id (an S node matches one A node).
+/// The match pairs a merge uses: S-Graph id -> A-Graph id(s). An S-room matches one A-room; an
+/// S-plane matches one A-wall-surface, or each of several collinear ones (a corridor wall split
+/// by doorways), which then share its weight.
 struct MatchPairs {
-  std::map<int, int> rooms;     // S-room id -> A-room id
-  std::map<int, int> surfaces;  // S-plane id -> A-wall-surface id
+  std::map<int, int> rooms;                  // S-room id -> A-room id
+  std::map<int, std::vector<int>> surfaces;  // S-plane id -> A-wall-surface ids
   bool empty() const { return rooms.empty() && surfaces.empty(); }
-  size_t size() const { return rooms.size() + surfaces.size(); }
 };
 
 /// One match pair's residual after the solve: the published S-Graph node moved by the solved

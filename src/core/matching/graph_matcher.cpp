@@ -175,7 +175,9 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     out.score = best.score;
     out.hypotheses = static_cast<unsigned>(1 + decision.competitors.size() + (doubt ? 1 : 0));
     out.bim_T_map = best.pose.ToIsometry();
-    std::map<int, MatchPair> surfaces;  // by S-plane id: the best pair
+    // By S-plane id: the best pair's score and A-feature; every piece of the feature is paired
+    // (an S-plane along collinear A-surfaces pairs with each of them).
+    std::map<int, std::pair<double, const PlaneFeature*>> surfaces;
     for (const auto& m : best.members) {
       const RoomDescriptor& s = s_rooms[m.s_room];
       const RoomDescriptor& a = a_rooms_[m.a_room];
@@ -183,14 +185,20 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
       for (size_t k = 0; k < m.evaluation.surfaces.size(); ++k) {
         const auto [i, j] = m.evaluation.surfaces[k];
         const double r = m.evaluation.residuals[k] / config_.quality_sigma;
-        const MatchPair pair{a.planes[j].id, s.planes[i].id, std::exp(-0.5 * r * r)};
-        auto it = surfaces.find(pair.s_id);
-        if (it == surfaces.end() || it->second.score < pair.score) surfaces[pair.s_id] = pair;
+        const double score = std::exp(-0.5 * r * r);
+        auto it = surfaces.find(s.planes[i].id);
+        if (it == surfaces.end() || it->second.first < score)
+          surfaces[s.planes[i].id] = {score, &a.planes[j]};
       }
     }
     std::sort(out.room_pairs.begin(), out.room_pairs.end(),
               [](const MatchPair& x, const MatchPair& y) { return x.s_id < y.s_id; });
-    for (const auto& [id, pair] : surfaces) out.surface_pairs.push_back(pair);
+    for (const auto& [s_id, best_pair] : surfaces) {
+      std::vector<int> pieces = best_pair.second->pieces;
+      if (pieces.empty()) pieces = {best_pair.second->id};
+      std::sort(pieces.begin(), pieces.end());
+      for (int a_id : pieces) out.surface_pairs.push_back({a_id, s_id, best_pair.first});
+    }
     for (int k : decision.competitors)
       out.alternatives.push_back(
           {hypotheses[k].pose.ToIsometry(), hypotheses[k].score, hypotheses[k].rooms});

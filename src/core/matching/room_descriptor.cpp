@@ -30,6 +30,7 @@ void AddMerged(std::vector<PlaneFeature>& planes, const PlaneFeature& f) {
     if (p.normal.dot(f.normal) > kCoplanarCos && std::abs(p.d - f.d) < kCoplanarOffset) {
       if (f.length > p.length) p.id = f.id;
       p.length += f.length;
+      p.pieces.insert(p.pieces.end(), f.pieces.begin(), f.pieces.end());
       return;
     }
   }
@@ -55,6 +56,7 @@ std::vector<RoomDescriptor> DescribeARooms(const agraph::AGraph& graph) {
       PlaneFeature f;
       if (!Horizontal(s.plane, room.center.z(), &f.normal, &f.d)) continue;
       f.id = s.id;
+      f.pieces = {s.id};
       f.r = f.normal.dot(desc.centre) - f.d;
       f.length = std::isfinite(s.Length()) ? s.Length() : 0.0;
       AddMerged(desc.planes, f);

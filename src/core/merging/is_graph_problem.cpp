@@ -93,19 +93,25 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
   const int num_surfaces = static_cast<int>(a_graph.surfaces.size());
   const int num_rooms = static_cast<int>(a_graph.rooms.size());
   std::vector<std::pair<int, int>> surface_pairs, room_pairs;
-  for (const auto& [s_id, a_id] : pairs.surfaces) {
+  for (const auto& [s_id, a_ids] : pairs.surfaces) {
     auto pl = s.planes.find(s_id);
-    if (pl == s.planes.end() || a_id < 0 || a_id >= num_surfaces) continue;
-    surface_pairs.emplace_back(s_id, a_id);
-    const Eigen::Vector3d& n_a = a_graph.surfaces[a_id].plane.normal;
-    // Opposed normals would zero the tangent residual: such a pair cannot enter the problem.
-    if ((geometry::RotationZ(initial.z()) * pl->second.n).dot(n_a) <= 0.0) continue;
-    hold(pl->second.n.data(), 3);
-    hold(&pl->second.d, 1);
-    problem.AddResidualBlock(SurfaceMatchCost::Create(n_a, z, surface_sqrt_info),
-                             new ceres::HuberLoss(config.match_huber), xi.data(),
-                             pl->second.n.data(), &pl->second.d, a_problem.SurfaceNormal(a_id),
-                             a_problem.SurfaceOffset(a_id));
+    if (pl == s.planes.end()) continue;
+    // An S-plane along k collinear A-surfaces: each pair weighs 1/k (the plane counts once).
+    const double share = 1.0 / static_cast<double>(std::max<size_t>(1, a_ids.size()));
+    for (int a_id : a_ids) {
+      if (a_id < 0 || a_id >= num_surfaces) continue;
+      surface_pairs.emplace_back(s_id, a_id);
+      const Eigen::Vector3d& n_a = a_graph.surfaces[a_id].plane.normal;
+      // Opposed normals would zero the tangent residual: such a pair cannot enter the problem.
+      if ((geometry::RotationZ(initial.z()) * pl->second.n).dot(n_a) <= 0.0) continue;
+      hold(pl->second.n.data(), 3);
+      hold(&pl->second.d, 1);
+      ceres::LossFunction* loss = new ceres::HuberLoss(config.match_huber);
+      if (share < 1.0) loss = new ceres::ScaledLoss(loss, share, ceres::TAKE_OWNERSHIP);
+      problem.AddResidualBlock(SurfaceMatchCost::Create(n_a, z, surface_sqrt_info), loss, xi.data(),
+                               pl->second.n.data(), &pl->second.d, a_problem.SurfaceNormal(a_id),
+                               a_problem.SurfaceOffset(a_id));
+    }
   }
   for (const auto& [s_id, a_id] : pairs.rooms) {
     auto c = s.centres.find(s_id);

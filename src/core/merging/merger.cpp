@@ -11,7 +11,7 @@ namespace {
 MatchPairs ToPairs(const matching::GraphMatch& match) {
   MatchPairs pairs;
   for (const auto& p : match.room_pairs) pairs.rooms[p.s_id] = p.a_id;
-  for (const auto& p : match.surface_pairs) pairs.surfaces[p.s_id] = p.a_id;
+  for (const auto& p : match.surface_pairs) pairs.surfaces[p.s_id].push_back(p.a_id);
   return pairs;
 }
 
@@ -97,7 +97,7 @@ MergeOutput Merger::OnMatch(const matching::GraphMatch& match, const sgraph::SGr
       return out;
     }
     for (const auto& [s, a] : ToPairs(match).rooms) pairs_.rooms[s] = a;
-    for (const auto& [s, a] : ToPairs(match).surfaces) pairs_.surfaces[s] = a;
+    for (const auto& [s, a] : ToPairs(match).surfaces) pairs_.surfaces[s] = a;  // a: the pieces
     prior_ = guess;
     match_z_ = match.bim_T_map.translation().z();
     return SolveAndCheck(s_graph, false);
