@@ -18,17 +18,18 @@
 namespace is_graphs {
 namespace {
 
-/// `g` with wall `w` cut in two at `fraction` of its first face's length, as a converter that
-/// splits walls at junctions writes it: both faces halved, the far halves a new wall, every
-/// room bounded by a face bounded by its pieces. Returns the new wall's id.
-int SplitWall(agraph::AGraph& g, int w, double fraction) {
+/// `g` with the wall of `face` cut in two at `fraction` of the face's length, as a converter
+/// that splits walls at junctions writes it: both faces halved, the far halves a new wall, every
+/// room bounded by a face bounded by its pieces. Returns the new piece of `face`.
+int SplitFace(agraph::AGraph& g, int face, double fraction) {
   const int new_wall = static_cast<int>(g.walls.size());
-  agraph::Wall wall = g.walls[w];
+  agraph::Wall wall = g.walls[g.surfaces[face].wall];
+  const bool first = wall.surface_a == face;
   wall.id = new_wall;
-  for (int* face : {&wall.surface_a, &wall.surface_b}) {
-    agraph::WallSurface piece = g.surfaces[*face];
+  for (int* side : {&wall.surface_a, &wall.surface_b}) {
+    agraph::WallSurface piece = g.surfaces[*side];
     const Eigen::Vector2d cut = piece.start + fraction * (piece.end - piece.start);
-    g.surfaces[*face].end = cut;
+    g.surfaces[*side].end = cut;
     piece.start = cut;
     piece.id = static_cast<int>(g.surfaces.size());
     piece.wall = new_wall;
@@ -36,12 +37,12 @@ int SplitWall(agraph::AGraph& g, int w, double fraction) {
       g.rooms[r].surfaces.push_back(piece.id);
       g.rooms[r].walls.push_back(new_wall);
     }
-    *face = piece.id;
+    *side = piece.id;
     g.surfaces.push_back(piece);
   }
   g.walls.push_back(wall);
   g.source.sha256 += "-split";
-  return new_wall;
+  return first ? wall.surface_a : wall.surface_b;
 }
 
 /// The longest face of `g` bounding at least one room.
@@ -55,11 +56,8 @@ int LongestRoomFace(const agraph::AGraph& g) {
 TEST(CollinearSurfaces, ARoomKeepsEveryPieceOfASplitFace) {
   agraph::AGraph g = agraph::LoadAGraph(testing::TwoRoomsPath()).value();
   const int face = LongestRoomFace(g);
-  const int wall = g.surfaces[face].wall;
-  const bool first = g.walls[wall].surface_a == face;
-  const int added = SplitWall(g, wall, 0.3);
+  const int piece = SplitFace(g, face, 0.3);
   ASSERT_EQ(agraph::ValidateAGraph(g), "");
-  const int piece = first ? g.walls[added].surface_a : g.walls[added].surface_b;
   for (const auto& room : matching::DescribeARooms(g)) {
     const auto& a_room = g.rooms[room.id];
     if (std::find(a_room.surfaces.begin(), a_room.surfaces.end(), piece) == a_room.surfaces.end())
@@ -87,11 +85,8 @@ TEST(CollinearSurfaces, AnSPlaneAlongASplitWallIsPairedWithBothPiecesAndMergedAs
   const matching::SyntheticSGraph s = matching::MakeSyntheticSGraph(*plan, c);
   agraph::AGraph split = *plan;
   const int face = LongestRoomFace(split);
-  const int wall = split.surfaces[face].wall;
-  const bool first = split.walls[wall].surface_a == face;
-  const int added = SplitWall(split, wall, 0.5);
+  const int piece = SplitFace(split, face, 0.5);
   ASSERT_EQ(agraph::ValidateAGraph(split), "");
-  const int piece = first ? split.walls[added].surface_a : split.walls[added].surface_b;
 
   matching::GraphMatcher matcher;
   matcher.SetAGraph(split);

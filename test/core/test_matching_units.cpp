@@ -147,6 +147,28 @@ TEST(CandidateGraph, ARectangleHasTwoYawsAndTheRightMotion) {
               AngleDistance(candidates[1].pose.yaw, true_yaw) < 1e-6);
 }
 
+// A room with one wall built 25 cm off the plan keeps its pair through its other walls: the
+// quality is the mean of the planes' Gaussians, so the off wall costs its share (3 + 0.11) / 4;
+// a Gaussian of the RMS made it 0.58 and let the whole room sink.
+TEST(CandidateGraph, OneWallOffThePlanCostsItsShareOnly) {
+  MatcherConfig config;
+  const RoomDescriptor a = Rectangle(0, 0, 4, 5);
+  const RoomDescriptor s = Rectangle(0, 0, 4.25, 5);  // the east wall 25 cm out
+  const auto tol = EvaluationTolerances::From(config);
+  const PairEvaluation off = EvaluatePair(s, a, Pose2{}, true, tol);
+  ASSERT_TRUE(off.ok);
+  EXPECT_EQ(off.surfaces.size(), 4u);
+  EXPECT_NEAR(off.rms, 0.125, 1e-9);
+  const double g = std::exp(-0.5 * std::pow(0.25 / config.quality_sigma, 2));
+  EXPECT_NEAR(off.quality, (3.0 + g) / 4.0, 1e-9);
+  EXPECT_GT(off.quality, 0.75);
+  // Every wall 10 cm off: each costs the same, as before.
+  const RoomDescriptor all_off = Rectangle(-0.1, -0.1, 4.1, 5.1);
+  const PairEvaluation uniform = EvaluatePair(all_off, a, Pose2{}, true, tol);
+  ASSERT_TRUE(uniform.ok);
+  EXPECT_NEAR(uniform.quality, std::exp(-0.5 * std::pow(0.1 / config.quality_sigma, 2)), 1e-9);
+}
+
 TEST(CandidateGraph, AMirroredTrapezoidIsNoFullMatch) {
   MatcherConfig config;
   RoomDescriptor trapezoid = Rectangle(0, 0, 4, 4);

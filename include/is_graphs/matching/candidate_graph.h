@@ -28,7 +28,7 @@ struct EvaluationTolerances {
 /// A room pair under a given motion: which S-planes found which A-surfaces, how well.
 struct PairEvaluation {
   bool ok{false};
-  double quality{0.0};  // (matched share of S-planes) (½ + ½ A-coverage) exp(-rms²/2σ²)
+  double quality{0.0};  // (matched share of S-planes) (½ + ½ A-coverage) mean exp(-r²/2σ²)
   double rms{0.0};
   std::vector<std::pair<int, int>> surfaces;  // (S-plane index, A-plane index) in the descriptors
   std::vector<double> residuals;              // per surface pair [m]

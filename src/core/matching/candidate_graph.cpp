@@ -114,9 +114,11 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   }
   const double coverage = total > 0.0 ? seen / total : 0.0;
   out.rms = std::sqrt(sum_sq / matched);
-  const double q = out.rms / tol.quality_sigma;
-  out.quality =
-      (static_cast<double>(matched) / n) * (0.5 + 0.5 * coverage) * std::exp(-0.5 * q * q);
+  double fit = 0.0;  // mean of the planes' Gaussians: one deviating wall costs its share only
+  for (double r : out.residuals)
+    fit += std::exp(-0.5 * (r * r) / (tol.quality_sigma * tol.quality_sigma));
+  fit /= matched;
+  out.quality = (static_cast<double>(matched) / n) * (0.5 + 0.5 * coverage) * fit;
   out.ok = true;
   return out;
 }
