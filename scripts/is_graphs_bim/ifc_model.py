@@ -3,6 +3,7 @@
 Everything that can go wrong with the input is reported as a `ConversionError` (fatal) or through
 `Diagnostics.warn` (the conversion goes on); never as a Python traceback.
 """
+import gc
 import hashlib
 import os
 import re
@@ -83,6 +84,10 @@ def _check_bytes(path, data):
 
 
 _ENTITY_LINE = re.compile(rb"(?m)^[ \t]*#\d+[ \t]*=")
+_FILE_SCHEMA = re.compile(rb"FILE_SCHEMA\s*\(\s*\(\s*'([^']*)'")
+# Older IFC2x editions IfcOpenShell has no schema for; the walls, spaces, doors, openings and
+# storeys the converter reads kept their names and attributes in IFC2X3, their successor.
+_READ_AS_IFC2X3 = {"IFC2X", "IFC2X_FINAL", "IFC2X2", "IFC2X2_FINAL", "IFC2X2_ADD1"}
 _SI_LENGTH = re.compile(rb"#(\d+)\s*=\s*IFCSIUNIT\s*\(\s*\*\s*,\s*\.LENGTHUNIT\.\s*,"
                         rb"\s*\.([A-Za-z_]+)\.\s*,", re.IGNORECASE)
 
@@ -123,6 +128,23 @@ def _length_unit(f, diag):
     return scale, False
 
 
+def _quietly(read):
+    """read() with Python's unraisable-exception hook silenced until what a failed read built is
+    gone: IfcOpenShell destroys a file it gave up on half-built, and its destructor's KeyError
+    was printed as a stray `Exception ignored in ...` after the real error."""
+    hook = sys.unraisablehook
+    sys.unraisablehook = lambda unraisable: None
+    try:
+        try:
+            return read()
+        except Exception as exc:
+            failure = str(exc).strip() or type(exc).__name__
+        gc.collect()  # the traceback (and the half-built file) released above: freed now
+        raise RuntimeError(failure)
+    finally:
+        sys.unraisablehook = hook
+
+
 def open_model(path, diag):
     """Reads and checks `path`; returns (IfcModel, forced_unit) or raises ConversionError."""
     if not os.path.exists(path):
@@ -137,11 +159,24 @@ def open_model(path, diag):
     if not data:
         raise ConversionError("empty file")
     _check_bytes(path, data)
+    header = _FILE_SCHEMA.search(data[:65536])
+    declared = header.group(1).decode("ascii", "replace").strip().upper() if header else ""
     try:
-        f = ifcopenshell.open(path)
+        if declared in _READ_AS_IFC2X3:
+            text = data.decode("utf-8", "replace")
+            text = text.replace(header.group(0).decode("ascii", "replace"),
+                                "FILE_SCHEMA(('IFC2X3'", 1)
+            f = _quietly(lambda: ifcopenshell.file.from_string(text))
+            diag.warn(f"schema {declared} (an older IFC2x edition IfcOpenShell has no schema for) "
+                      "read as IFC2X3, its successor: check the conversion's counts")
+        else:
+            f = _quietly(lambda: ifcopenshell.open(path))
     except Exception as exc:
-        raise ConversionError(f"IfcOpenShell cannot parse it: {str(exc).strip() or type(exc).__name__}"
-                              ) from None
+        why = str(exc).strip() or type(exc).__name__
+        if declared and "schema" in why.lower():
+            why += (f" (the file declares {declared}; IfcOpenShell {ifcopenshell.version} reads "
+                    "IFC2X3, IFC4 and IFC4X3; older IFC2x editions are read as IFC2X3)")
+        raise ConversionError(f"IfcOpenShell cannot parse it: {why}") from None
     try:
         parsed = len(f.wrapped_data.entity_names())
     except Exception:
@@ -165,7 +200,8 @@ def open_model(path, diag):
     buildings = sorted(f.by_type("IfcBuilding"), key=lambda b: b.id())
     stem = os.path.splitext(os.path.basename(path))[0]
     name = (buildings[0].Name or buildings[0].LongName or "") if buildings else ""
-    model = IfcModel(path=path, file=f, sha256=hashlib.sha256(data).hexdigest(), schema=f.schema,
+    schema = f"{declared} (read as {f.schema})" if declared in _READ_AS_IFC2X3 else f.schema
+    model = IfcModel(path=path, file=f, sha256=hashlib.sha256(data).hexdigest(), schema=schema,
                      application=app, length_unit_m=scale, building_name=name or stem)
     return model, forced
 

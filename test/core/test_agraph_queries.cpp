@@ -154,6 +154,21 @@ TEST(AGraphQueries, Summarize) {
   }
 }
 
+// The file's length unit by name: a millimetre file printed "unit 0.00 m" (issue 24).
+TEST(AGraphQueries, SummarizeNamesTheLengthUnit) {
+  AGraph g = TwoStoreys();
+  const std::pair<double, const char*> units[] = {{1.0, "unit metre\n"},
+                                                  {0.001, "unit millimetre (0.001 m)\n"},
+                                                  {0.3048, "unit foot (0.3048 m)\n"},
+                                                  {0.5, "unit 0.5 m\n"}};
+  for (const auto& [metres, expected] : units) {
+    g.source.length_unit_m = metres;
+    const std::string summary = Summarize(g);
+    EXPECT_NE(summary.find(expected), std::string::npos) << "no \"" << expected << "\" in\n"
+                                                         << summary;
+  }
+}
+
 }  // namespace
 }  // namespace agraph
 }  // namespace is_graphs

@@ -198,3 +198,32 @@ def test_house_conversion_is_deterministic(make_house, run_converter, tmp_path):
         outs.append(((tmp_path / sub / "h.agraph.json").read_bytes(),
                      (tmp_path / sub / "h.obj").read_bytes()))
     assert outs[0] == outs[1]
+
+
+@pytest.mark.parametrize("declared", ["IFC2X_FINAL", "IFC2X2_FINAL"])
+def test_older_ifc2x_editions_are_read_as_ifc2x3(make_house, run_converter, tmp_path, declared):
+    # Allplan and Autodesk ADT write IFC2X_FINAL: IfcOpenShell has no such schema and stopped
+    # the conversion (plus a stray "Exception ignored" from its destructor), although the same
+    # file converts fully once its header says IFC2X3 (issue 24).
+    path, _ = make_house(schema="IFC2X3", unit="mm")
+    data = path.read_bytes()
+    assert b"FILE_SCHEMA(('IFC2X3'))" in data
+    old = tmp_path / "old.ifc"
+    header = f"FILE_SCHEMA(('{declared}'))".encode()
+    old.write_bytes(data.replace(b"FILE_SCHEMA(('IFC2X3'))", header))
+    proc = run_converter([old, "-o", tmp_path / "h"])
+    g = ok(proc)
+    assert g["source"]["schema"] == f"{declared} (read as IFC2X3)"
+    assert (len(g["walls"]), len(g["rooms"]), len(g["doorways"])) == (5, 2, 2)
+    assert f"schema {declared}" in proc.stderr and "read as IFC2X3" in proc.stderr
+    assert "Exception ignored" not in proc.stderr
+
+
+def test_an_unknown_schema_is_one_clear_error(make_house, run_converter, tmp_path):
+    path, _ = make_house(schema="IFC2X3")
+    data = path.read_bytes()
+    odd = tmp_path / "odd.ifc"
+    odd.write_bytes(data.replace(b"FILE_SCHEMA(('IFC2X3'))", b"FILE_SCHEMA(('IFC9X'))"))
+    proc = run_converter([odd, "-o", tmp_path / "h"])
+    fails(proc, "odd.ifc", "IFC9X", "IFC2X3, IFC4 and IFC4X3")
+    assert "Exception ignored" not in proc.stderr and "KeyError" not in proc.stderr, proc.stderr

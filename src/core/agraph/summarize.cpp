@@ -1,3 +1,4 @@
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -16,6 +17,25 @@ double SignedArea(const std::vector<Eigen::Vector2d>& polygon) {
   return 0.5 * twice_area;
 }
 
+namespace {
+
+/// The IFC file's length unit, named ("millimetre (0.001 m)"): "%.2f m" printed 0.00 m for it.
+std::string UnitName(double metres) {
+  const struct {
+    double m;
+    const char* name;
+  } known[] = {{1.0, "metre"},     {0.001, "millimetre"}, {0.01, "centimetre"},
+               {0.1, "decimetre"}, {0.3048, "foot"},      {0.0254, "inch"}};
+  std::ostringstream out;
+  out << std::setprecision(6) << metres << " m";
+  for (const auto& k : known)
+    if (std::abs(metres - k.m) <= 1e-9 * k.m)
+      return k.m == 1.0 ? "metre" : std::string(k.name) + " (" + out.str() + ")";
+  return out.str();
+}
+
+}  // namespace
+
 std::string Summarize(const AGraph& graph) {
   std::ostringstream out;
   out << std::fixed << std::setprecision(2);
@@ -23,7 +43,7 @@ std::string Summarize(const AGraph& graph) {
   out << "source:   " << (graph.source.file.empty() ? "(unknown)" : graph.source.file);
   if (!graph.source.schema.empty()) out << ", " << graph.source.schema;
   if (!graph.source.application.empty()) out << ", " << graph.source.application;
-  out << ", unit " << graph.source.length_unit_m << " m\n";
+  out << ", unit " << UnitName(graph.source.length_unit_m) << "\n";
   out << "mesh:     " << (graph.mesh.empty() ? "(none)" : graph.mesh) << "\n";
   out << "storeys:  " << graph.storeys.size() << "\n";
 
