@@ -128,6 +128,63 @@ def _length_unit(f, diag):
     return scale, False
 
 
+_INSTANCE = re.compile(rb"(?m)^([ \t]*#\d+[ \t]*=[ \t]*)([A-Za-z0-9_]+)[ \t]*\((.*)\)[ \t]*;[ \t]*$")
+
+
+def _top_level_args(text):
+    """The top-level arguments of a STEP instance's attribute list, as (start, end) spans."""
+    spans, depth, start, i, n = [], 0, 0, 0, len(text)
+    while i < n:
+        c = text[i]
+        if c == 0x27:  # a string: '' is an escaped quote
+            i += 1
+            while i < n and not (text[i] == 0x27 and (i + 1 >= n or text[i + 1] != 0x27)):
+                i += 2 if text[i] == 0x27 else 1
+        elif c == 0x28:
+            depth += 1
+        elif c == 0x29:
+            depth -= 1
+        elif c == 0x2C and depth == 0:
+            spans.append((start, i))
+            start = i + 1
+        i += 1
+    spans.append((start, n))
+    return spans
+
+
+def _underived_stars(data, schema):
+    """`data` with every `*` (derived) that stands for an attribute the schema does not derive
+    replaced by `$` (unset), and {entity: count}. Renga writes Name as `*`; IfcOpenShell then
+    fails to build the geometry of every such product ("Type held at index 2 is 7Derived")."""
+    try:
+        decls = ifcopenshell.ifcopenshell_wrapper.schema_by_name(schema)
+    except Exception:
+        return data, {}
+    fixed = {}
+
+    def repl(m):
+        args = m.group(3)
+        if b"*" not in args:
+            return m.group(0)
+        try:
+            derived = decls.declaration_by_name(m.group(2).decode("ascii")).derived()
+        except Exception:
+            return m.group(0)
+        spans = _top_level_args(args)
+        out, last = [], 0
+        for k, (a, b) in enumerate(spans):
+            if args[a:b].strip() == b"*" and k < len(derived) and not derived[k]:
+                out += [args[last:a], b"$"]
+                last = b
+                name = decls.declaration_by_name(m.group(2).decode("ascii")).name()
+                fixed[name] = fixed.get(name, 0) + 1
+        if not out:
+            return m.group(0)
+        return m.group(1) + m.group(2) + b"(" + b"".join(out) + args[last:] + b");"
+
+    return _INSTANCE.sub(repl, data), fixed
+
+
 def _quietly(read):
     """read() with Python's unraisable-exception hook silenced until what a failed read built is
     gone: IfcOpenShell destroys a file it gave up on half-built, and its destructor's KeyError
@@ -161,16 +218,23 @@ def open_model(path, diag):
     _check_bytes(path, data)
     header = _FILE_SCHEMA.search(data[:65536])
     declared = header.group(1).decode("ascii", "replace").strip().upper() if header else ""
+    schema = "IFC2X3" if declared in _READ_AS_IFC2X3 else declared
+    text, stars = _underived_stars(data, schema) if b"*" in data else (data, {})
+    if not stars:
+        text = data  # nothing replaced: IfcOpenShell reads the file itself
     try:
         if declared in _READ_AS_IFC2X3:
-            text = data.decode("utf-8", "replace")
-            text = text.replace(header.group(0).decode("ascii", "replace"),
-                                "FILE_SCHEMA(('IFC2X3'", 1)
-            f = _quietly(lambda: ifcopenshell.file.from_string(text))
+            text = text.replace(header.group(0), b"FILE_SCHEMA(('IFC2X3'", 1)
             diag.warn(f"schema {declared} (an older IFC2x edition IfcOpenShell has no schema for) "
                       "read as IFC2X3, its successor: check the conversion's counts")
-        else:
+        if text is data:
             f = _quietly(lambda: ifcopenshell.open(path))
+        else:
+            f = _quietly(lambda: ifcopenshell.file.from_string(text.decode("utf-8", "replace")))
+        if stars:
+            what = ", ".join(f"{name} {count}" for name, count in sorted(stars.items()))
+            diag.warn(f"{sum(stars.values())} attributes written '*' (derived) where the schema "
+                      f"has a value, read as unset ({what})")
     except Exception as exc:
         why = str(exc).strip() or type(exc).__name__
         if declared and "schema" in why.lower():

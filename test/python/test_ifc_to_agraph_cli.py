@@ -227,3 +227,25 @@ def test_an_unknown_schema_is_one_clear_error(make_house, run_converter, tmp_pat
     proc = run_converter([odd, "-o", tmp_path / "h"])
     fails(proc, "odd.ifc", "IFC9X", "IFC2X3, IFC4 and IFC4X3")
     assert "Exception ignored" not in proc.stderr and "KeyError" not in proc.stderr, proc.stderr
+
+
+def test_names_written_as_derived_are_read_as_unset(make_house, run_converter, tmp_path):
+    # A Renga IFC2X3 export writes every product's Name as `*` (derived): IfcOpenShell then built
+    # no geometry for the walls, doors, openings and slabs ("Type held at index 2 is 7Derived"),
+    # and the conversion lost every door or stopped (issue 24). Only attributes the schema does
+    # not derive are read as unset; IfcSIUnit's derived dimensions stay `*`.
+    import re
+    path, _ = make_house(schema="IFC2X3", unit="mm")
+    text = path.read_text()
+    starred, count = re.subn(
+        r"(=IFC(?:DOOR|OPENINGELEMENT|SLAB|WALL|WALLSTANDARDCASE|SPACE)\('[^']*',#\d+,)'[^']*'",
+        r"\1*", text)
+    assert count >= 9 and "IFCSIUNIT(*," in starred
+    renga = tmp_path / "renga.ifc"
+    renga.write_text(starred)
+    proc = run_converter([renga, "-o", tmp_path / "h"])
+    g = ok(proc)
+    assert (len(g["walls"]), len(g["rooms"]), len(g["doorways"])) == (5, 2, 2)
+    assert sorted(d["width"] for d in g["doorways"]) == pytest.approx([0.9, 1.0])
+    assert f"{count} attributes written '*' (derived)" in proc.stderr, proc.stderr
+    assert any(f"{count} attributes written" in w for w in g["warnings"])
