@@ -167,7 +167,8 @@ def _underived_stars(data, schema):
         if b"*" not in args:
             return m.group(0)
         try:
-            derived = decls.declaration_by_name(m.group(2).decode("ascii")).derived()
+            decl = decls.declaration_by_name(m.group(2).decode("ascii"))
+            derived = decl.derived()
         except Exception:
             return m.group(0)
         spans = _top_level_args(args)
@@ -176,8 +177,7 @@ def _underived_stars(data, schema):
             if args[a:b].strip() == b"*" and k < len(derived) and not derived[k]:
                 out += [args[last:a], b"$"]
                 last = b
-                name = decls.declaration_by_name(m.group(2).decode("ascii")).name()
-                fixed[name] = fixed.get(name, 0) + 1
+                fixed[decl.name()] = fixed.get(decl.name(), 0) + 1
         if not out:
             return m.group(0)
         return m.group(1) + m.group(2) + b"(" + b"".join(out) + args[last:] + b");"
@@ -218,8 +218,8 @@ def open_model(path, diag):
     _check_bytes(path, data)
     header = _FILE_SCHEMA.search(data[:65536])
     declared = header.group(1).decode("ascii", "replace").strip().upper() if header else ""
-    schema = "IFC2X3" if declared in _READ_AS_IFC2X3 else declared
-    text, stars = _underived_stars(data, schema) if b"*" in data else (data, {})
+    read_as = "IFC2X3" if declared in _READ_AS_IFC2X3 else declared
+    text, stars = _underived_stars(data, read_as) if b"*" in data else (data, {})
     if not stars:
         text = data  # nothing replaced: IfcOpenShell reads the file itself
     try:

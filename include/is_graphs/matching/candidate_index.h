@@ -18,7 +18,9 @@ namespace matching {
 /// whose centre says little, are always in the answer.
 class CandidateIndex {
  public:
-  /// `candidates[i]` are S-room i's candidates against `a_rooms`; both must outlive the index.
+  /// `candidates[i]` are S-room i's candidates against `a_rooms` (which must outlive the index).
+  /// The grid's cells are `cell` metres, larger where the A-rooms spread over more than
+  /// kMaxCells cells a side (a stray room centre far off must not allocate a huge grid).
   CandidateIndex(const std::vector<std::vector<RoomCandidate>>& candidates,
                  const std::vector<RoomDescriptor>& a_rooms, double cell = 2.0);
 
@@ -27,6 +29,7 @@ class CandidateIndex {
   void Near(int s_room, const Eigen::Vector2d& centre, double radius, std::vector<int>* out) const;
 
  private:
+  static constexpr int kMaxCells = 512;
   // A-room centres on a grid (CSR: the rooms of cell c are rooms_in_cell_[cell_start_[c] ..]).
   double cell_;
   Eigen::Vector2d origin_{Eigen::Vector2d::Zero()};

@@ -34,12 +34,12 @@ struct GraphMatch {
   MatchStatus status{MatchStatus::kNone};
   std::string a_graph_sha256;
   unsigned s_graph_revision{0};
-  std::vector<MatchPair> room_pairs;     // A-room id, S-room id
+  std::vector<MatchPair> room_pairs;  // A-room id, S-room id
   // A-wall-surface id, S-plane id; an S-plane along collinear A-surfaces (a face split by the
   // converter, a corridor wall split by doorways) is paired with each of them, same score.
   std::vector<MatchPair> surface_pairs;
-  double score{0.0};                     // global affinity of the best hypothesis
-  unsigned hypotheses{0};                // hypotheses in the best score cluster (1 when UNIQUE)
+  double score{0.0};       // global affinity of the best hypothesis
+  unsigned hypotheses{0};  // hypotheses in the best score cluster (1 when UNIQUE)
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // rotation about z + translation
   std::vector<HypothesisSummary> alternatives;  // the other hypotheses of the best cluster
   std::vector<std::string> warnings;            // bad input found in either graph

@@ -28,6 +28,7 @@ CandidateIndex::CandidateIndex(const std::vector<std::vector<RoomCandidate>>& ca
   origin_ = -hi;
   for (const auto& a : a_rooms) origin_ = origin_.cwiseMin(a.centre), hi = hi.cwiseMax(a.centre);
   if (a_rooms.empty()) origin_ = hi = Eigen::Vector2d::Zero();
+  cell_ = std::max(cell_, (hi - origin_).maxCoeff() / kMaxCells);
   nx_ = static_cast<int>((hi.x() - origin_.x()) / cell_) + 1;
   ny_ = static_cast<int>((hi.y() - origin_.y()) / cell_) + 1;
   std::vector<int> cell_of(a_rooms.size());

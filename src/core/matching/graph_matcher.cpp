@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 
@@ -88,15 +89,13 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
         EvaluationTolerances::From(config_, config_.lever_arm_slack * (s.centre - anchor).norm());
     const RoomCandidate* best = nullptr;
     PairEvaluation best_eval;
-    if (seed) {
-      const Eigen::Vector2d ds = s.centre - seed_corr.s_centre;
-      index.Near(si, seed_corr.a_centre + seed_turn * ds,
-                 ConsistencyRadius(ds.norm(), config_.centre_tolerance, config_.lever_arm_slack),
-                 &near);
-    } else {
-      near.resize(candidates[si].size());
-      std::iota(near.begin(), near.end(), 0);
-    }
+    // Without a seed (the last best motion grown again) every candidate may join.
+    const Eigen::Vector2d ds = s.centre - seed_corr.s_centre;
+    index.Near(si, seed_corr.a_centre + seed_turn * ds,
+               seed
+                   ? ConsistencyRadius(ds.norm(), config_.centre_tolerance, config_.lever_arm_slack)
+                   : std::numeric_limits<double>::infinity(),
+               &near);
     for (int k : near) {
       const RoomCandidate& c = candidates[si][k];
       if (AngleDistance(c.pose.yaw, h.pose.yaw) > yaw_tol) continue;

@@ -96,8 +96,9 @@ MergeOutput Merger::OnMatch(const matching::GraphMatch& match, const sgraph::SGr
                     " deg apart): merge dropped, matching again";
       return out;
     }
-    for (const auto& [s, a] : ToPairs(match).rooms) pairs_.rooms[s] = a;
-    for (const auto& [s, a] : ToPairs(match).surfaces) pairs_.surfaces[s] = a;  // a: the pieces
+    const MatchPairs fresh = ToPairs(match);
+    for (const auto& [s, a] : fresh.rooms) pairs_.rooms[s] = a;
+    for (const auto& [s, a] : fresh.surfaces) pairs_.surfaces[s] = a;  // a: the pieces
     prior_ = guess;
     match_z_ = match.bim_T_map.translation().z();
     return SolveAndCheck(s_graph, false);
