@@ -42,15 +42,16 @@ def table_one(results):
 
 
 def details(results):
-    lines = ["| dataset | localized | first UNIQUE match | first pose in B | UNIQUE matches / "
-             "wrong | x-y APE RMSE / max [m] | yaw RMSE / max [°] | map cloud RMSE / median "
-             "[m] (points used) | replay [s] (RTF, peak MiB) |", "|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| dataset | localized | first UNIQUE [s] | walked to first UNIQUE [m] | first pose "
+             "in B | UNIQUE matches / wrong | x-y APE RMSE / max [m] | yaw RMSE / max [°] | map "
+             "cloud RMSE / median [m] (points used) | replay [s] (RTF, peak MiB) |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for name, r in results.items():
         loc = "yes" if r["localized"] else "**no**"
         if r["localized"] and not r["localized_at_end"]:
             loc += " (lost at the end)"
-        first = (f"{r['first_unique_s']:.1f} s, {r['first_unique_m']:.1f} m"
-                 if "first_unique_s" in r else DASH)
+        first = (f"{r['first_unique_s']:.1f} | {r['first_unique_m']:.1f}"
+                 if "first_unique_s" in r else f"{DASH} | {DASH}")
         pose = (f"{r['seconds_to_localize']:.1f} s, {r['distance_to_localize']:.1f} m"
                 if r["localized"] else DASH)
         xy, yaw = _xy_yaw(r.get("isgraphs"))

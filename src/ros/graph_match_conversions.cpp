@@ -34,6 +34,7 @@ is_graphs::GraphMatch ToMsg(const matching::GraphMatch& match) {
   msg.s_graph_revision = match.s_graph_revision;
   msg.room_pairs = PairsToMsg(match.room_pairs);
   msg.surface_pairs = PairsToMsg(match.surface_pairs);
+  msg.doorway_pairs = PairsToMsg(match.doorway_pairs);
   msg.score = match.score;
   msg.hypotheses = match.hypotheses;
   msg.bim_T_map = ToPose(match.bim_T_map);
@@ -57,6 +58,7 @@ matching::GraphMatch FromMsg(const is_graphs::GraphMatch& msg) {
   match.s_graph_revision = msg.s_graph_revision;
   match.room_pairs = PairsFromMsg(msg.room_pairs);
   match.surface_pairs = PairsFromMsg(msg.surface_pairs);
+  match.doorway_pairs = PairsFromMsg(msg.doorway_pairs);
   match.score = msg.score;
   match.hypotheses = msg.hypotheses;
   match.bim_T_map = FromPose(msg.bim_T_map);

@@ -68,6 +68,21 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
     surfaces.points.push_back(ToPoint(s_point));
   }
 
+  auto doorways = Make(style, "doorway_pairs", visualization_msgs::Marker::LINE_LIST, colour,
+                       2.0 * style.line_width);
+  std::map<int, const sgraph::Doorway*> s_doorways;
+  for (const auto& d : s_graph.doorways) s_doorways.emplace(d.id, &d);
+  for (const auto& p : match.doorway_pairs) {
+    const auto s = s_doorways.find(p.s_id);
+    if (p.a_id < 0 || p.a_id >= static_cast<int>(a_graph.doorways.size()) || s == s_doorways.end())
+      continue;
+    const Eigen::Vector3d a_point = a_graph.doorways[p.a_id].position;
+    const Eigen::Vector3d s_point = t * s->second->position + lift;
+    if (!s_point.allFinite() || !a_point.allFinite()) continue;
+    doorways.points.push_back(ToPoint(a_point));
+    doorways.points.push_back(ToPoint(s_point));
+  }
+
   auto text = Make(style, "status", visualization_msgs::Marker::TEXT_VIEW_FACING, colour, 0.8);
   Eigen::Vector3d text_at = Eigen::Vector3d::Zero();
   for (const auto& r : a_graph.rooms)
@@ -76,7 +91,7 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
   text.text = std::string(matching::ToString(match.status)) + " (" +
               std::to_string(match.hypotheses) + " hypotheses, S-Graph rev " +
               std::to_string(match.s_graph_revision) + ")";
-  for (auto* m : {&rooms, &centres, &surfaces})
+  for (auto* m : {&rooms, &centres, &surfaces, &doorways})
     if (!m->points.empty()) array.markers.push_back(*m);
   array.markers.push_back(text);
   return array;

@@ -43,6 +43,11 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "wall_crossing_penalty", c.wall_crossing_penalty);
   ros_params::Read(pnh, "surface_evidence_weight", c.surface_evidence_weight);
   ros_params::Read(pnh, "surface_full_length", c.surface_full_length);
+  ros_params::Read(pnh, "doorway_evidence_weight", c.doorway_evidence_weight);
+  ros_params::Read(pnh, "doorway_tolerance", c.doorway_tolerance);
+  ros_params::Read(pnh, "doorway_width_tolerance", c.doorway_width_tolerance);
+  ros_params::Read(pnh, "sight_penalty", c.sight_penalty);
+  ros_params::Read(pnh, "sight_viewpoints", c.sight_viewpoints);
   ros_params::Read(pnh, "surface_min_length", c.surface_min_length);
   ros_params::Read(pnh, "surface_min_height", c.surface_min_height);
   ros_params::Read(pnh, "door_margin", c.door_margin);

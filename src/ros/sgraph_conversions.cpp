@@ -64,6 +64,16 @@ is_graphs::SGraph ToMsg(const sgraph::SGraph& graph) {
     m.room_ids = CastIds<uint32_t>(f.rooms);
     msg.floors.push_back(m);
   }
+  for (const auto& d : graph.doorways) {
+    is_graphs::SDoorway m;
+    m.id = static_cast<uint32_t>(d.id);
+    m.position = ToPoint(d.position);
+    m.width = d.width;
+    m.room_ids = CastIds<uint32_t>(d.rooms);
+    m.plane_ids = CastIds<uint32_t>(d.planes);
+    m.keyframe_ids = CastIds<uint32_t>(d.keyframes);
+    msg.doorways.push_back(m);
+  }
   return msg;
 }
 
@@ -120,6 +130,16 @@ sgraph::SGraph FromMsg(const is_graphs::SGraph& msg) {
     f.height = m.height;
     f.rooms = CastIds<int>(m.room_ids);
     graph.floors.push_back(f);
+  }
+  for (const auto& m : msg.doorways) {
+    sgraph::Doorway d;
+    d.id = static_cast<int>(m.id);
+    d.position = FromPoint(m.position);
+    d.width = m.width;
+    d.rooms = CastIds<int>(m.room_ids);
+    d.planes = CastIds<int>(m.plane_ids);
+    d.keyframes = CastIds<int>(m.keyframe_ids);
+    graph.doorways.push_back(d);
   }
   return graph;
 }

@@ -121,9 +121,36 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
       floor_edges.points.push_back(ToPoint(r->second));
     }
   }
+  // Doorways walked through: a bar across the gap at floor height (0.9 m when the width is not
+  // known), and a line up to each room it joins.
+  Marker doorways =
+      MakeMarker(style, "doorways", Marker::LINE_LIST, 3.0 * style.line_width, 1.0f, 0.6f, 0.0f);
+  Marker doorway_edges = MakeMarker(style, "doorway_edges", Marker::LINE_LIST, style.line_width,
+                                    1.0f, 0.6f, 0.0f, 0.7f);
+  std::map<int, const sgraph::Plane*> plane_by_id;
+  for (const auto& p : graph.planes) plane_by_id[p.id] = &p;
+  for (const auto& d : graph.doorways) {
+    if (!d.position.allFinite()) continue;
+    Eigen::Vector2d along = Eigen::Vector2d::UnitX();
+    const auto p = d.planes.empty() ? plane_by_id.end() : plane_by_id.find(d.planes.front());
+    if (p != plane_by_id.end())
+      along = Eigen::Vector2d(-p->second->plane.normal.y(), p->second->plane.normal.x());
+    if (along.norm() > 1e-6) along.normalize();
+    const double half = 0.5 * (d.width > 0.0 ? d.width : 0.9);
+    const Eigen::Vector3d a = d.position + half * Eigen::Vector3d(along.x(), along.y(), 0.0);
+    const Eigen::Vector3d b = d.position - half * Eigen::Vector3d(along.x(), along.y(), 0.0);
+    doorways.points.push_back(ToPoint(a));
+    doorways.points.push_back(ToPoint(b));
+    for (int rid : d.rooms) {
+      auto r = room_at.find(rid);
+      if (r == room_at.end()) continue;
+      doorway_edges.points.push_back(ToPoint(d.position));
+      doorway_edges.points.push_back(ToPoint(r->second));
+    }
+  }
   visualization_msgs::MarkerArray out;
   for (Marker* m : {&keyframes, &odom, &planes, &plane_nodes, &observations, &rooms, &corridors,
-                    &room_edges, &floor, &floor_edges}) {
+                    &room_edges, &floor, &floor_edges, &doorways, &doorway_edges}) {
     // Empty lists are published as DELETE so stale markers disappear after a reset.
     if (m->points.empty() || (m->type == Marker::LINE_STRIP && m->points.size() < 2))
       m->action = Marker::DELETE;

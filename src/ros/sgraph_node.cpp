@@ -113,6 +113,15 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "room_rays", f.room_rays);
   Read(pnh, "room_rectangle_share", f.room_rectangle_share);
   Read(pnh, "room_max_opening", f.room_max_opening);
+  Read(pnh, "doorway_detect", f.doorways.detect);
+  Read(pnh, "doorway_max_step", f.doorways.max_step);
+  Read(pnh, "doorway_min_wall_height", f.doorways.min_wall_height);
+  Read(pnh, "doorway_extent_margin", f.doorways.extent_margin);
+  Read(pnh, "doorway_max_width", f.doorways.max_width);
+  Read(pnh, "doorway_merge_distance", f.doorways.merge_distance);
+  Read(pnh, "doorway_wall_band", f.doorways.wall_band);
+  Read(pnh, "doorway_band_low", f.doorways.band_low);
+  Read(pnh, "doorway_band_high", f.doorways.band_high);
   auto& b = p.backend;
   Read(pnh, "max_iterations", b.max_iterations);
   Read(pnh, "max_solver_time", b.max_solver_time);

@@ -9,6 +9,7 @@
 #include "is_graphs/matching/graph_matcher.h"
 #include "is_graphs/matching/synthetic_sgraph.h"
 #include "is_graphs/matching/wall_crossings.h"
+#include "is_graphs/sgraph/doorway_detection.h"
 #include "matching_test_helpers.h"
 
 namespace is_graphs {
@@ -176,6 +177,38 @@ TEST(MatchingPathEvidence, TheWalkThroughTwoDoorsTellsTheOfficesHalfTurnTwinApar
   std::string why;
   EXPECT_EQ(m.status, MatchStatus::kUnique);
   EXPECT_TRUE(MatchIsCorrect(m, two_doors, &why)) << why;
+}
+
+// The same twins and the walk into 112 alone, with the doorway it went through (found by the
+// S-Graph's detector): under the truth it lies at 112's door, under the half turn 1.45 m from
+// 104's. The doorway and the wall the twin goes through together decide.
+TEST(MatchingPathEvidence, TheDoorwayWalkedThroughAndTheWallCrossedTogetherDecide) {
+  IS_GRAPHS_BUILDING_OR_SKIP(g, ProjectBim("office.ifc"));
+  SyntheticSGraphConfig c;
+  c.rooms = {RoomByName(*g, "Corridor"), RoomByName(*g, "112")};
+  c.corridor_aspect = 0.0;
+  c.bim_T_map = geometry::IsometryFromXYYaw(-3.0, 14.0, 0.7);
+  c.normal_noise_deg = 0.5;
+  c.offset_noise = 0.02;
+  c.seed = 5;
+  SyntheticSGraph one_door = MakeSyntheticSGraph(*g, c);
+  Walk(one_door, {{1.5, 6.0}, {6.2, 6.0}, {6.2, 2.5}});
+  one_door.graph.doorways = sgraph::DetectDoorways(one_door.graph, sgraph::DoorwayConfig{});
+  ASSERT_EQ(one_door.graph.doorways.size(), 1u);
+  auto match = [&](const MatcherConfig& config) {
+    GraphMatcher matcher(config);
+    matcher.SetAGraph(*g);
+    return matcher.Match(one_door.graph);
+  };
+  MatcherConfig without;
+  without.doorway_evidence_weight = 0.0;
+  EXPECT_EQ(match(without).status, MatchStatus::kAmbiguous);
+  const GraphMatch m = match(MatcherConfig{});
+  std::string why;
+  EXPECT_EQ(m.status, MatchStatus::kUnique);
+  EXPECT_TRUE(MatchIsCorrect(m, one_door, &why)) << why;
+  ASSERT_EQ(m.doorway_pairs.size(), 1u);
+  EXPECT_EQ(g->doorways[m.doorway_pairs[0].a_id].name, "d112");
 }
 
 // Storeys with one plan imply one planar motion; they must compete, not merge. Random walks of

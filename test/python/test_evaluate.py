@@ -158,7 +158,8 @@ def test_report_tables(tmp_path):
     text = open(md).read()
     assert "| D5 | 0.040 m, 0.00° | 0.000 m, 0.00° | 0.000 m, 0.00° | 0.000 m, 0.00° |" in text
     assert "| R1 | not localized |" in text
-    assert "| D5 | yes | 4.0 s, 2.0 m | 5.0 s, 2.5 m | 2 / 1 | 0.040 / 0.040 |" in text
+    assert "| D5 | yes | 4.0 | 2.0 | 5.0 s, 2.5 m | 2 / 1 | 0.040 / 0.040 |" in text
+    assert "| R1 | **no** | – | – |" in text
     assert "R1: full bag absent" in text and "D2: bag missing" in text
     saved = json.load(open(tmp_path / "results.json"))
     assert saved["missing_bags"] == ["D2"] and saved["datasets"]["D5"]["wrong_matches"] == 1

@@ -95,6 +95,14 @@ sgraph::SGraph MakeSGraph() {
   r.information = Eigen::Matrix3d::Identity() * 9.0;
   g.rooms.push_back(r);
   g.floors.push_back({0, Eigen::Vector3d(1.0, 1.0, 0.0), 0.0, {2}});
+  sgraph::Doorway d;
+  d.id = 176;
+  d.position = {2.0, 3.0, 0.1};
+  d.width = 0.85;
+  d.rooms = {2};
+  d.planes = {4};
+  d.keyframes = {11};
+  g.doorways.push_back(d);
   return g;
 }
 
@@ -132,6 +140,13 @@ TEST(SGraphConversions, RoundTripKeepsEveryField) {
   EXPECT_TRUE(b.rooms[0].center.isApprox(a.rooms[0].center));
   ASSERT_EQ(b.floors.size(), 1u);
   EXPECT_EQ(b.floors[0].rooms, std::vector<int>{2});
+  ASSERT_EQ(b.doorways.size(), 1u);
+  EXPECT_EQ(b.doorways[0].id, 176);
+  EXPECT_TRUE(b.doorways[0].position.isApprox(a.doorways[0].position));
+  EXPECT_DOUBLE_EQ(b.doorways[0].width, 0.85);
+  EXPECT_EQ(b.doorways[0].rooms, std::vector<int>{2});
+  EXPECT_EQ(b.doorways[0].planes, std::vector<int>{4});
+  EXPECT_EQ(b.doorways[0].keyframes, std::vector<int>{11});
 }
 
 TEST(CloudConversions, RoundTripDropsNothingFinite) {

@@ -38,6 +38,9 @@ struct GraphMatch {
   // A-wall-surface id, S-plane id; an S-plane along collinear A-surfaces (a face split by the
   // converter, a corridor wall split by doorways) is paired with each of them, same score.
   std::vector<MatchPair> surface_pairs;
+  // A-doorway id, S-doorway id: the S-Graph's walked-through doorways at the BIM's
+  // (DoorwayEvidence).
+  std::vector<MatchPair> doorway_pairs;
   double score{0.0};       // global affinity of the best hypothesis
   unsigned hypotheses{0};  // hypotheses in the best score cluster (1 when UNIQUE)
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // rotation about z + translation

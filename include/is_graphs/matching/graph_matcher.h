@@ -9,10 +9,12 @@
 #include "is_graphs/agraph/agraph.h"
 #include "is_graphs/matching/candidate_graph.h"
 #include "is_graphs/matching/candidate_index.h"
+#include "is_graphs/matching/doorway_evidence.h"
 #include "is_graphs/matching/graph_match.h"
 #include "is_graphs/matching/hypothesis_scoring.h"
 #include "is_graphs/matching/matcher_config.h"
 #include "is_graphs/matching/room_descriptor.h"
+#include "is_graphs/matching/sight_evidence.h"
 #include "is_graphs/matching/surface_evidence.h"
 #include "is_graphs/matching/wall_crossings.h"
 #include "is_graphs/sgraph/sgraph.h"
@@ -39,8 +41,10 @@ struct MatchStats {
 ///     the motion fitted to everything, and scored by global affinity;
 ///  3. score: the affinity, plus the loose wall planes (of no S-room, or of S-rooms no
 ///     hypothesis pairs: seen through doorways, a room built off the plan) that lie on BIM
-///     wall-surfaces under its motion, less what contradicts it: BIM walls the robot's walked
-///     path (its keyframes) crosses away from every doorway;
+///     wall-surfaces under its motion, plus the doorways the robot walked through that lie at
+///     BIM doorways between the paired rooms (DoorwayEvidence), less what contradicts it: BIM
+///     walls the robot's walked path (its keyframes) crosses away from every doorway, and
+///     loose planes it could only have seen through an interior BIM wall (HiddenWalls);
 ///  4. decision: hypotheses implying the same motion merged, the best score cluster
 ///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide);
 ///  5. doubt: a UNIQUE answer is re-checked by a second matcher whose room-centre gate is
@@ -85,15 +89,26 @@ class GraphMatcher {
   std::vector<WallSegment> LooseWalls(const sgraph::SGraph& graph,
                                       const std::vector<RoomDescriptor>& s_rooms,
                                       const std::vector<Hypothesis>& hypotheses) const;
-  /// Step 3: scores `hypotheses` on their pairs, the `loose` planes and the walked `path`.
-  void Score(std::vector<Hypothesis>& hypotheses, const std::vector<PathStep>& path,
-             const std::vector<WallSegment>& loose) const;
+  /// What one S-Graph shows beyond its rooms, the same for every hypothesis and the doubter.
+  struct Evidence {
+    std::vector<PathStep> path;       // the walked path
+    std::vector<WallSegment> loose;   // the loose wall planes (LooseWalls)
+    std::vector<SeenWall> seen;       // ... with the keyframes that observed them
+    std::vector<SDoorwayView> doors;  // the doorways walked through
+  };
+  /// Step 3: scores `hypotheses` on their pairs and the `evidence`.
+  void Score(std::vector<Hypothesis>& hypotheses, const Evidence& evidence,
+             const std::vector<RoomDescriptor>& s_rooms) const;
+  /// sight_penalty x the loose planes `h` could not have seen (HiddenWalls).
+  double Hidden(const Hypothesis& h, const Evidence& evidence) const;
+  /// S-room id -> A-room id of the pairs of `h`.
+  std::map<int, int> PairedRooms(const Hypothesis& h,
+                                 const std::vector<RoomDescriptor>& s_rooms) const;
   /// A hypothesis of another motion than `best` that the doubter finds within the margin.
   std::optional<Hypothesis> Doubt(const std::vector<RoomDescriptor>& s_rooms,
                                   const Hypothesis& best,
                                   const std::vector<Eigen::Vector2d>& s_points,
-                                  const std::vector<PathStep>& path,
-                                  const std::vector<WallSegment>& loose);
+                                  const Evidence& evidence);
 
   Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,
                   const std::vector<RoomDescriptor>& s_rooms,
@@ -106,6 +121,7 @@ class GraphMatcher {
   std::vector<RoomDescriptor> a_rooms_;
   WallCrossings crossings_;
   SurfaceEvidence surfaces_;
+  DoorwayEvidence doorways_;
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
   MatchStats stats_;

@@ -28,8 +28,9 @@ struct Hypothesis {
   int storey{-1};  // the A-Graph storey of its pairs (a hypothesis keeps to one)
   std::vector<MemberPair> members;
   double affinity{0.0};  // GlobalAffinity of the members
-  double evidence{0.0};  // surface_evidence_weight x SurfaceEvidence of the loose wall planes
+  double evidence{0.0};  // weighted SurfaceEvidence of the loose wall planes + DoorwayEvidence
   int crossings{-1};     // walls the walked path crosses under `pose`; -1: not evaluated
+  double hidden{0.0};    // sight_penalty x HiddenWalls of the loose planes (with crossings)
   double score{0.0};
   int rooms{0};  // matched S-rooms
 };
@@ -38,17 +39,19 @@ struct Hypothesis {
 /// fixes the motion only across an axis).
 double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfig& config);
 
-/// Scores every hypothesis: affinity + evidence(h) - wall_crossing_penalty x crossings(h):
-/// evidence(h) what the S-Graph shows beyond the pairs that fits h (wall planes on the BIM's
-/// surfaces, already weighted), crossings(h) the walls the walked path crosses under its
-/// motion. crossings(h) is evaluated best first and only while it can still change the
-/// decision: a hypothesis scoring more than ambiguity_margin below the best score so far can
-/// neither win nor compete, and keeps crossings = -1.
+/// Scores every hypothesis: affinity + evidence(h) - wall_crossing_penalty x crossings(h) -
+/// hidden(h): evidence(h) what the S-Graph shows beyond the pairs that fits h (wall planes on the
+/// BIM's surfaces, doorways at its doorways, already weighted), crossings(h) the walls the
+/// walked path crosses under its motion, hidden(h) the weighted wall planes it could not have
+/// seen under it. crossings(h) and hidden(h) are evaluated best first and only while they can
+/// still change the decision: a hypothesis scoring more than ambiguity_margin below the best
+/// score so far can neither win nor compete, and keeps crossings = -1.
 /// (Penalising S-rooms a hypothesis pairs with nothing was tried and left out: it widened the
 /// gaps between partial hypotheses of a mirror image until one became UNIQUE.)
 void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
                      const std::function<double(const Hypothesis&)>& evidence,
                      const std::function<int(const Hypothesis&)>& crossings,
+                     const std::function<double(const Hypothesis&)>& hidden,
                      const MatcherConfig& config);
 
 /// The motion fitted to all surface pairs of the members and the centres of the full-rank ones.

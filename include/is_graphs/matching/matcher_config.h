@@ -29,6 +29,16 @@ struct MatcherConfig {
   double surface_full_length{2.0};  // a plane this long counts fully, a shorter one in proportion
   double surface_min_length{1.0};   // shorter planes (or lower ones) are not taken for walls
   double surface_min_height{1.9};
+  // Doorways the robot walked through (S-Graph doorways) lying at the BIM's doorways under a
+  // hypothesis (DoorwayEvidence): each adds up to doorway_evidence_weight; 0: not used.
+  double doorway_evidence_weight{0.2};
+  double doorway_tolerance{0.5};         // m between an S-doorway and its A-doorway
+  double doorway_width_tolerance{0.35};  // m between their widths, when both are known
+  // Loose wall planes that could not have been seen under a hypothesis (HiddenWalls: every
+  // sight line from the keyframes that observed them through an interior BIM wall): each costs
+  // up to sight_penalty (x min(1, length / surface_full_length)); 0: not used.
+  double sight_penalty{0.1};
+  int sight_viewpoints{4};  // keyframes per plane whose sight lines are checked
   // --- decision ---
   double ambiguity_margin{0.4};      // hypotheses scoring within this of the best compete
   double cluster_yaw_deg{3.0};       // hypotheses closer than this (and cluster_translation)

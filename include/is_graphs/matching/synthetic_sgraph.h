@@ -32,18 +32,25 @@ struct SyntheticSGraphConfig {
   int extra_rooms{0};             // rectangular rooms that are not in the BIM
   double split_probability{0.0};  // a surface bounding several rooms becomes one plane per room
   // --- harsh (drawn from their own stream: the fields above give the same graph with or without)
-  int moved_walls{0};            // surfaces of the taken rooms built off the plan by ...
-  double moved_wall_min{0.25};   // ... at least this and at most moved_wall_max [m],
-  double moved_wall_max{0.35};   //     either way along the normal
-  int turned_walls{0};           // surfaces built turned about their middle by ...
-  double turned_wall_deg{15.0};  // ... up to this, either way
-  int missing_walls{0};          // surfaces of the taken rooms not built (no plane)
-  bool walk{false};              // keyframes along a walk through the rooms' doorways
-  double walk_spacing{0.8};      // m between keyframes
-  double walk_noise{0.0};        // σ of each keyframe's position, per axis [m]
-  int through_walls{0};          // walks through walls the plan has (openings it lacks)
-  std::vector<int> seen_rooms;   // A-rooms whose surfaces are mapped as planes of no S-room
-                                 // (seen through a doorway), each 40-100 % of it
+  int moved_walls{0};                 // surfaces of the taken rooms built off the plan by ...
+  double moved_wall_min{0.25};        // ... at least this and at most moved_wall_max [m],
+  double moved_wall_max{0.35};        //     either way along the normal
+  int turned_walls{0};                // surfaces built turned about their middle by ...
+  double turned_wall_deg{15.0};       // ... up to this, either way
+  int missing_walls{0};               // surfaces of the taken rooms not built (no plane)
+  bool walk{false};                   // keyframes along a walk through the rooms' doorways
+  double walk_spacing{0.8};           // m between keyframes
+  double walk_noise{0.0};             // σ of each keyframe's position, per axis [m]
+  int through_walls{0};               // walks through walls the plan has (openings it lacks)
+  std::vector<int> seen_rooms;        // A-rooms whose surfaces are mapped as planes of no S-room
+                                      // (seen through a doorway), each 40-100 % of it
+  bool doorways{false};               // S-Graph doorways found on the walk (sgraph::DetectDoorways)
+  double missing_doorway_share{0.0};  // each one dropped with this probability
+  int extra_doorways{0};              // doorways on random S-room planes, where the BIM has none
+  // Observations of the planes of no S-room from the walk's keyframes within 10 m that had a
+  // clear sight line to them in the building as built (not with `mirror`): ...
+  bool observations{false};
+  int unbuilt_walls{0};  // ... where this many interior walls of the taken rooms were not built
   std::uint64_t seed{1};
 };
 
@@ -55,10 +62,18 @@ struct SyntheticSGraph {
   std::map<int, double> moved;     // A-surface id -> metres built off the plan (harsh)
   std::map<int, double> turned;    // A-surface id -> radians built turned (harsh)
   std::vector<int> missing;        // A-surface ids not built (harsh)
+  std::vector<int> unbuilt;        // A-wall ids not built, seen through (observations)
 };
 
 SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& building,
                                     const SyntheticSGraphConfig& config);
+
+/// Adds to s.graph the observations of its planes of no S-room from its keyframes within 10 m
+/// that had a clear sight line to them (WallCrossings::Blocks, under the truth) in the building
+/// as built: the plan less config.unbuilt_walls interior walls of config.rooms (drawn from
+/// config.seed; recorded in s.unbuilt). MakeSyntheticSGraph calls it with `observations`.
+void AddSyntheticObservations(const agraph::AGraph& building, const SyntheticSGraphConfig& config,
+                              SyntheticSGraph& s);
 
 /// A motion about z by a uniform yaw with a translation uniform in [-max, max]².
 Eigen::Isometry3d RandomPlanarMotion(std::mt19937_64& rng, double max_translation);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <set>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -38,12 +39,20 @@ class WallCrossings {
   /// `storey` (an A-Graph storey id).
   int Count(const std::vector<PathStep>& steps, const Pose2& pose, int storey) const;
 
+  /// Whether a sight line from `from` to `to` (in M) under `pose` goes through an interior wall
+  /// of the storey (one whose faces all bound rooms) away from every doorway, in by one face and
+  /// out by the other. Exterior walls and walls of one face never block: they may hold windows
+  /// the A-Graph does not have.
+  bool Blocks(const Eigen::Vector2d& from, const Eigen::Vector2d& to, const Pose2& pose,
+              int storey) const;
+
  private:
   struct Surface {
     Eigen::Vector2d a, b;
     Eigen::Vector2d normal;  // out of the wall's material
     int wall;                // the A-Graph wall, or -1 - surface id for a surface of no wall
     bool two_faced;          // its wall has another surface on the storey
+    bool interior;           // two-faced and every face of its wall bounds a room
   };
   struct Door {
     Eigen::Vector2d position;
@@ -62,6 +71,10 @@ class WallCrossings {
   };
 
   bool NearDoor(const Storey& storey, const Eigen::Vector2d& p) const;
+  /// The walls `steps` go through (Count); with `sight`, interior walls only and the first
+  /// one found ends the walk.
+  std::set<int> Through(const std::vector<PathStep>& steps, const Pose2& pose, int storey,
+                        bool sight) const;
 
   std::unordered_map<int, Storey> storeys_;
 };

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "is_graphs/sgraph/doorway_detection.h"
+
 namespace is_graphs {
 namespace sgraph {
 
@@ -91,6 +93,9 @@ struct FrontendConfig {
   // polygonal room of all the walls hit.
   double room_rectangle_share{0.7};
   double room_max_opening{2.0};  // m: the widest unwalled stretch of a four-wall room's side
+
+  // Doorways where the walked path crosses wall planes (ROS parameters doorway_<field>).
+  DoorwayConfig doorways;
 
   /// Empty when valid, else what is wrong (naming the field).
   std::string Validate() const;

@@ -63,6 +63,17 @@ struct Floor {
   std::vector<int> rooms;  // room ids
 };
 
+/// A doorway the robot walked through: where a keyframe step crossed wall planes (a wall's two
+/// faces, or the gap between two collinear pieces of one), in M. msg/SDoorway.msg.
+struct Doorway {
+  int id{0};  // 16 x the keyframe before its first crossing + its rank in that step: stable
+  Eigen::Vector3d position{Eigen::Vector3d::Zero()};  // mean crossing point, at floor height
+  double width{0.0};           // m, from the gap in the wall; 0 when the gap was not closed
+  std::vector<int> rooms;      // S-room ids on its sides (those owning a crossed plane)
+  std::vector<int> planes;     // the crossed wall planes (the wall's faces or pieces)
+  std::vector<int> keyframes;  // the keyframes before each crossing step
+};
+
 struct SGraph {
   unsigned revision{0};
   double stamp{0.0};
@@ -71,6 +82,7 @@ struct SGraph {
   std::vector<PlaneObservation> observations;
   std::vector<Room> rooms;
   std::vector<Floor> floors;
+  std::vector<Doorway> doorways;
 };
 
 }  // namespace sgraph

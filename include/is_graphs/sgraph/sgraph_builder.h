@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "is_graphs/sgraph/backend_config.h"
+#include "is_graphs/sgraph/doorway_detection.h"
 #include "is_graphs/sgraph/frontend_config.h"
 #include "is_graphs/sgraph/keyframe_selector.h"
 #include "is_graphs/sgraph/odometry_buffer.h"
@@ -119,6 +120,8 @@ class SGraphBuilder {
   void UpdateFloor();
   double FloorHeight() const;
   BackendProblem MakeProblem() const;
+  /// A doorway's width from the gap in its wall's points around the crossing; 0 if not closed.
+  double DoorwayWidthLocked(const Doorway& doorway, const SGraph& graph) const;
   Eigen::Matrix<double, 6, 6> OdometryInformation(const Eigen::Isometry3d& relative) const;
 
   FrontendConfig frontend_;

@@ -43,6 +43,7 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   a_rooms_ = DescribeARooms(graph);
   crossings_ = WallCrossings(graph, config_.door_margin);
   surfaces_ = SurfaceEvidence(graph, config_);
+  doorways_ = DoorwayEvidence(graph, config_);
   a_sha256_ = graph.source.sha256;
   has_agraph_ = true;
   cache_.clear();
@@ -153,9 +154,13 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
 
   std::vector<Hypothesis> hypotheses = Hypothesize(s_rooms);
   // One set of loose wall planes for this S-Graph, the doubter's hypotheses scored on it too.
-  const std::vector<WallSegment> loose = LooseWalls(graph, s_rooms, hypotheses);
-  const std::vector<PathStep> path = WalkedPath(graph, config_.max_path_step);
-  Score(hypotheses, path, loose);
+  Evidence evidence;
+  evidence.loose = LooseWalls(graph, s_rooms, hypotheses);
+  evidence.path = WalkedPath(graph, config_.max_path_step);
+  evidence.doors = UsableDoorways(graph, &out.warnings);
+  if (config_.sight_penalty > 0.0)
+    evidence.seen = SeenFrom(graph, evidence.loose, config_.sight_viewpoints);
+  Score(hypotheses, evidence, s_rooms);
   std::vector<Eigen::Vector2d> s_points;
   for (const auto& s : s_rooms) s_points.push_back(s.centre);
 
@@ -164,7 +169,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   stats_.hypotheses = static_cast<int>(hypotheses.size());
   std::optional<Hypothesis> doubt;
   if (decision.status == MatchStatus::kUnique && doubter_) {
-    doubt = Doubt(s_rooms, hypotheses[decision.best], s_points, path, loose);
+    doubt = Doubt(s_rooms, hypotheses[decision.best], s_points, evidence);
     if (doubt) decision.status = MatchStatus::kAmbiguous;
   }
   out.status = decision.status;
@@ -198,6 +203,8 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
       std::sort(pieces.begin(), pieces.end());
       for (int a_id : pieces) out.surface_pairs.push_back({a_id, s_id, best_pair.first});
     }
+    out.doorway_pairs =
+        doorways_.Pairs(evidence.doors, best.pose, best.storey, PairedRooms(best, s_rooms));
     for (int k : decision.competitors)
       out.alternatives.push_back(
           {hypotheses[k].pose.ToIsometry(), hypotheses[k].score, hypotheses[k].rooms});
@@ -211,20 +218,22 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
 std::optional<Hypothesis> GraphMatcher::Doubt(const std::vector<RoomDescriptor>& s_rooms,
                                               const Hypothesis& best,
                                               const std::vector<Eigen::Vector2d>& s_points,
-                                              const std::vector<PathStep>& path,
-                                              const std::vector<WallSegment>& loose) {
+                                              const Evidence& evidence) {
   doubter_->stats_ = MatchStats{};  // its own bound on seeds, per call
   std::vector<Hypothesis> doubts = doubter_->Hypothesize(s_rooms);
-  doubter_->Score(doubts, path, loose);
+  doubter_->Score(doubts, evidence, s_rooms);
   std::optional<Hypothesis> strongest;
   for (auto& d : doubts) {
     if (d.members.empty() || d.score < best.score - config_.ambiguity_margin) continue;
     if (d.storey == best.storey && SameMotion(best.pose, d.pose, s_points, config_)) continue;
-    // The doubter weighs the walked path only against its own best; a doubt must have paid for
-    // the walls it goes through before it competes with this best.
-    if (d.crossings < 0 && config_.wall_crossing_penalty > 0.0) {
-      d.crossings = crossings_.Count(path, d.pose, d.storey);
+    // The doubter weighs the walked path and the sight lines only against its own best; a
+    // doubt must have paid for the walls it goes through and the planes it could not have seen
+    // before it competes with this best.
+    if (d.crossings < 0) {
+      d.crossings = crossings_.Count(evidence.path, d.pose, d.storey);
       d.score -= config_.wall_crossing_penalty * d.crossings;
+      d.hidden = Hidden(d, evidence);
+      d.score -= d.hidden;
       if (d.score < best.score - config_.ambiguity_margin) continue;
     }
     if (!strongest || d.score > strongest->score) strongest = std::move(d);
@@ -306,18 +315,37 @@ std::vector<WallSegment> GraphMatcher::LooseWalls(const sgraph::SGraph& graph,
   return loose;
 }
 
-void GraphMatcher::Score(std::vector<Hypothesis>& hypotheses, const std::vector<PathStep>& path,
-                         const std::vector<WallSegment>& loose) const {
-  // 3. Scores: the pairs' affinity, plus the loose wall planes the BIM explains, less the walls
-  // the walked path crosses under each motion.
-  auto evidence = [&](const Hypothesis& h) {
-    return loose.empty()
-               ? 0.0
-               : config_.surface_evidence_weight * surfaces_.Explained(loose, h.pose, h.storey);
+std::map<int, int> GraphMatcher::PairedRooms(const Hypothesis& h,
+                                             const std::vector<RoomDescriptor>& s_rooms) const {
+  std::map<int, int> out;
+  for (const auto& m : h.members) out[s_rooms[m.s_room].id] = a_rooms_[m.a_room].id;
+  return out;
+}
+
+double GraphMatcher::Hidden(const Hypothesis& h, const Evidence& evidence) const {
+  if (evidence.seen.empty() || config_.sight_penalty <= 0.0) return 0.0;
+  return config_.sight_penalty *
+         HiddenWalls(evidence.seen, crossings_, h.pose, h.storey, config_.surface_full_length);
+}
+
+void GraphMatcher::Score(std::vector<Hypothesis>& hypotheses, const Evidence& evidence,
+                         const std::vector<RoomDescriptor>& s_rooms) const {
+  // 3. Scores: the pairs' affinity, plus the loose wall planes and the walked-through doorways
+  // the BIM explains, less the walls the walked path crosses and the loose planes it could not
+  // have seen under each motion.
+  auto explained = [&](const Hypothesis& h) {
+    double e = 0.0;
+    if (!evidence.loose.empty())
+      e += config_.surface_evidence_weight * surfaces_.Explained(evidence.loose, h.pose, h.storey);
+    if (!evidence.doors.empty() && config_.doorway_evidence_weight > 0.0)
+      e += config_.doorway_evidence_weight *
+           doorways_.Explained(evidence.doors, h.pose, h.storey, PairedRooms(h, s_rooms));
+    return e;
   };
   ScoreHypotheses(
-      hypotheses, evidence,
-      [&](const Hypothesis& h) { return crossings_.Count(path, h.pose, h.storey); }, config_);
+      hypotheses, explained,
+      [&](const Hypothesis& h) { return crossings_.Count(evidence.path, h.pose, h.storey); },
+      [&](const Hypothesis& h) { return Hidden(h, evidence); }, config_);
 }
 
 }  // namespace matching

@@ -18,11 +18,13 @@ double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfi
 void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
                      const std::function<double(const Hypothesis&)>& evidence,
                      const std::function<int(const Hypothesis&)>& crossings,
+                     const std::function<double(const Hypothesis&)>& hidden,
                      const MatcherConfig& config) {
   std::vector<int> order;
   for (size_t k = 0; k < hypotheses.size(); ++k) {
     Hypothesis& h = hypotheses[k];
     h.crossings = -1;
+    h.hidden = 0.0;
     h.evidence = h.members.empty() ? 0.0 : evidence(h);
     h.score = h.affinity + h.evidence;
     if (!h.members.empty()) order.push_back(static_cast<int>(k));
@@ -35,6 +37,8 @@ void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
     if (h.score < best - config.ambiguity_margin) break;  // sorted: no later one can matter
     h.crossings = config.wall_crossing_penalty > 0.0 ? crossings(h) : 0;
     h.score -= config.wall_crossing_penalty * h.crossings;
+    h.hidden = config.sight_penalty > 0.0 ? hidden(h) : 0.0;
+    h.score -= h.hidden;
     best = std::max(best, h.score);
   }
 }

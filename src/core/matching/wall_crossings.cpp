@@ -52,6 +52,8 @@ std::vector<PathStep> WalkedPath(const sgraph::SGraph& graph, double max_step) {
 }
 
 WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin) {
+  std::set<int> bounds_room;  // surface ids some room lists
+  for (const auto& r : graph.rooms) bounds_room.insert(r.surfaces.begin(), r.surfaces.end());
   for (const auto& s : graph.surfaces) {
     if (!s.start.allFinite() || !s.end.allFinite() || s.Length() < 1e-6) continue;
     Storey& storey = storeys_[s.storey];
@@ -59,7 +61,8 @@ WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin) {
     const Eigen::Vector2d n = s.plane.normal.head<2>();
     const bool faced = n.norm() > 0.5;  // no direction (not a wall): crossed wherever it is
     storey.surfaces.push_back({s.start, s.end, faced ? n.normalized() : Eigen::Vector2d::Zero(),
-                               s.wall >= 0 && faced ? s.wall : -1 - s.id, false});
+                               s.wall >= 0 && faced ? s.wall : -1 - s.id, false,
+                               bounds_room.count(s.id) > 0});
     // Every cell the surface's segment passes through (sampled finer than a cell).
     std::set<long long> keys;
     const int samples = 1 + static_cast<int>(std::ceil(4.0 * s.Length() / kCell));
@@ -70,9 +73,16 @@ WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin) {
     for (long long key : keys) storey.cells[key].push_back(index);
   }
   for (auto& [id, storey] : storeys_) {
-    std::map<int, int> faces;  // wall -> surfaces on this storey
-    for (const auto& f : storey.surfaces) ++faces[f.wall];
-    for (auto& f : storey.surfaces) f.two_faced = f.wall >= 0 && faces[f.wall] > 1;
+    std::map<int, int> faces;   // wall -> surfaces on this storey
+    std::map<int, bool> inner;  // wall -> every face bounds a room
+    for (const auto& f : storey.surfaces) {
+      ++faces[f.wall];
+      inner.emplace(f.wall, true).first->second &= f.interior;
+    }
+    for (auto& f : storey.surfaces) {
+      f.two_faced = f.wall >= 0 && faces[f.wall] > 1;
+      f.interior = f.two_faced && inner[f.wall];
+    }
   }
   for (const auto& d : graph.doorways) {
     if (!d.position.allFinite() || !std::isfinite(d.width)) continue;
@@ -87,8 +97,18 @@ bool WallCrossings::NearDoor(const Storey& storey, const Eigen::Vector2d& p) con
 }
 
 int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, int storey) const {
+  return static_cast<int>(Through(steps, pose, storey, false).size());
+}
+
+bool WallCrossings::Blocks(const Eigen::Vector2d& from, const Eigen::Vector2d& to,
+                           const Pose2& pose, int storey) const {
+  return !Through({{from, to}}, pose, storey, true).empty();
+}
+
+std::set<int> WallCrossings::Through(const std::vector<PathStep>& steps, const Pose2& pose,
+                                     int storey, bool sight) const {
   const auto found = storeys_.find(storey);
-  if (found == storeys_.end()) return 0;
+  if (found == storeys_.end()) return {};
   const Storey& s = found->second;
   std::set<int> crossed;
   std::map<int, Entry> inside;  // wall -> where the path went into it (two-faced walls)
@@ -126,6 +146,7 @@ int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, 
     });
     for (const auto& [distance, i, at] : hits) {
       const Surface& surface = s.surfaces[i];
+      if (sight && !surface.interior) continue;
       const bool door = NearDoor(s, at);
       if (!surface.two_faced) {
         if (!door) crossed.insert(surface.wall);
@@ -143,11 +164,12 @@ int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, 
       if (other_face && !entry->second.near_door && !door &&
           (entry->second.at - at).norm() <= kMaxTraversal) {
         crossed.insert(surface.wall);
+        if (sight) return crossed;
       }
       inside.erase(entry);
     }
   }
-  return static_cast<int>(crossed.size());
+  return crossed;
 }
 
 }  // namespace matching

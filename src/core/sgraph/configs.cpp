@@ -1,6 +1,7 @@
 #include <sstream>
 
 #include "is_graphs/sgraph/backend_config.h"
+#include "is_graphs/sgraph/doorway_detection.h"
 #include "is_graphs/sgraph/frontend_config.h"
 
 namespace is_graphs {
@@ -89,6 +90,19 @@ std::string FrontendConfig::Validate() const {
   c.Range("room_rays", room_rays, 16, 3600);
   c.Range("room_rectangle_share", room_rectangle_share, 0.5, 1.0);
   c.Positive("room_max_opening", room_max_opening);
+  if (!c.error().empty()) return c.error();
+  return doorways.Validate();
+}
+
+std::string DoorwayConfig::Validate() const {
+  Checker c;
+  c.Positive("doorway_max_step", max_step);
+  c.NonNegative("doorway_min_wall_height", min_wall_height);
+  c.NonNegative("doorway_extent_margin", extent_margin);
+  c.Positive("doorway_max_width", max_width);
+  c.Positive("doorway_merge_distance", merge_distance);
+  c.Positive("doorway_wall_band", wall_band);
+  c.Less("doorway_band_low", band_low, "doorway_band_high", band_high);
   return c.error();
 }
 

@@ -1,4 +1,7 @@
 // SGraphBuilder: the optimization off the scan path, and what is read out of the graph.
+#include <algorithm>
+#include <set>
+
 #include "is_graphs/sgraph/cloud_filter.h"
 #include "is_graphs/sgraph/floor_node.h"
 #include "is_graphs/sgraph/sgraph_builder.h"
@@ -94,7 +97,44 @@ SGraph SGraphBuilder::Snapshot() const {
   }
   if (floor_.present) graph.floors.push_back(MakeFloor(graph.rooms, height));
   if (floor_.present && !graph.floors.empty()) graph.floors.back().center.head<2>() = floor_.center;
+  graph.doorways = DetectDoorways(graph, frontend_.doorways);
+  for (auto& d : graph.doorways)
+    if (d.width <= 0.0) d.width = DoorwayWidthLocked(d, graph);
   return graph;
+}
+
+double SGraphBuilder::DoorwayWidthLocked(const Doorway& doorway, const SGraph& graph) const {
+  // The crossed planes (the wall's faces), and the points of the keyframes around the crossing
+  // steps that lie on them between knee and head height: the gap among them is the doorway.
+  std::vector<const Plane*> faces;
+  for (const auto& p : graph.planes)
+    if (std::count(doorway.planes.begin(), doorway.planes.end(), p.id)) faces.push_back(&p);
+  if (faces.empty()) return 0.0;
+  const Eigen::Vector3d n = faces.front()->plane.normal;
+  const Eigen::Vector2d along = Eigen::Vector2d(-n.y(), n.x()).normalized();
+  const DoorwayConfig& c = frontend_.doorways;
+  const double reach = c.max_width + 0.5;
+  std::set<size_t> near;  // keyframe indices: each step's two ends and one more either side
+  for (int id : doorway.keyframes)
+    for (size_t i = 0; i < keyframes_.size(); ++i)
+      if (keyframes_[i].id == id)
+        for (size_t j = i > 0 ? i - 1 : 0; j <= i + 2 && j < clouds_.size(); ++j) near.insert(j);
+  std::vector<double> coords;
+  for (size_t i : near) {
+    const Eigen::Isometry3d& pose = keyframes_[i].pose;
+    for (const auto& q : clouds_[i]) {
+      const Eigen::Vector3d p = pose * q.cast<double>();
+      const double height = p.z() - doorway.position.z();
+      if (height < c.band_low || height > c.band_high) continue;
+      const double u = along.dot((p - doorway.position).head<2>());
+      if (std::abs(u) > reach) continue;
+      if (std::any_of(faces.begin(), faces.end(), [&](const Plane* f) {
+            return std::abs(f->plane.SignedDistance(p)) < c.wall_band;
+          }))
+        coords.push_back(u);
+    }
+  }
+  return GapWidth(coords, c.max_width);
 }
 
 Eigen::Isometry3d SGraphBuilder::MapToOdom() const {

@@ -105,6 +105,23 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
     for (const auto& w : walls) std::printf(" %d:%.2f", w.id, evidence.Share(w, p, storey));
     std::printf("\n");
   };
+  // The doorways walked through, under the truth: the nearest BIM doorway, and its pair if any.
+  for (const auto& d : graph.doorways) {
+    const Eigen::Vector2d at = true_pose.Apply(d.position.head<2>());
+    const agraph::Doorway* nearest = nullptr;
+    for (const auto& a : building.doorways)
+      if (!nearest ||
+          (a.position.head<2>() - at).norm() < (nearest->position.head<2>() - at).norm())
+        nearest = &a;
+    std::printf("S-doorway %d (width %.2f m, %zu rooms) in B (%.2f, %.2f)", d.id, d.width,
+                d.rooms.size(), at.x(), at.y());
+    if (nearest)
+      std::printf(": nearest BIM doorway %d '%s' (width %.2f m) %.2f m away", nearest->id,
+                  nearest->name.c_str(), nearest->width, (nearest->position.head<2>() - at).norm());
+    for (const auto& p : m.doorway_pairs)
+      if (p.s_id == d.id) std::printf("; paired with %d (%.2f)", p.a_id, p.score);
+    std::printf("\n");
+  }
   if (m.status != matching::MatchStatus::kNone) {
     print("best      ", m.bim_T_map, m.score, static_cast<int>(m.room_pairs.size()));
     shares(m.bim_T_map);
