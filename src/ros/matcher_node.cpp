@@ -48,6 +48,7 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "doorway_width_tolerance", c.doorway_width_tolerance);
   ros_params::Read(pnh, "sight_penalty", c.sight_penalty);
   ros_params::Read(pnh, "sight_viewpoints", c.sight_viewpoints);
+  ros_params::Read(pnh, "sight_door_margin", c.sight_door_margin);
   ros_params::Read(pnh, "surface_min_length", c.surface_min_length);
   ros_params::Read(pnh, "surface_min_height", c.surface_min_height);
   ros_params::Read(pnh, "door_margin", c.door_margin);

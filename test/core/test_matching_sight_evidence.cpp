@@ -46,6 +46,12 @@ TEST(SightLines, InteriorWallsBlockDoorwaysAndExteriorWallsDoNot) {
   // The motion moves the line: 2 m up, the door's line goes through the wall.
   EXPECT_TRUE(crossings.Blocks({2.0, 2.5}, {6.0, 2.5}, Pose2{0.0, {0.0, 2.0}}, 0));
   EXPECT_FALSE(crossings.Blocks({2.0, 0.5}, {6.0, 0.5}, identity, 3));  // another storey
+  // A sight line goes through the opening itself: 0.7 m from the door's centre (half-width
+  // 0.45 + sight margin 0.15 = 0.6) it goes through the wall, where a walked step (half-width +
+  // door_margin 0.4 = 0.85) is still taken for the doorway.
+  EXPECT_TRUE(crossings.Blocks({2.0, 3.2}, {6.0, 3.2}, identity, 0));
+  EXPECT_FALSE(crossings.Blocks({2.0, 3.0}, {6.0, 3.0}, identity, 0));
+  EXPECT_EQ(crossings.Count({{{3.0, 3.2}, {5.0, 3.2}}}, identity, 0), 0);
   // The walked path still counts the exterior wall as crossed.
   EXPECT_EQ(crossings.Count({{{6.0, 1.0}, {10.0, 1.0}}}, identity, 0), 1);
 }

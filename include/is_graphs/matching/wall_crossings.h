@@ -33,14 +33,17 @@ std::vector<PathStep> WalkedPath(const sgraph::SGraph& graph, double max_step);
 class WallCrossings {
  public:
   WallCrossings() = default;
-  WallCrossings(const agraph::AGraph& graph, double door_margin);
+  /// `sight_margin`: as door_margin, for sight lines (Blocks): a line of sight goes through the
+  /// opening itself, where a walked path's keyframes wander with the pose noise.
+  WallCrossings(const agraph::AGraph& graph, double door_margin, double sight_margin = 0.15);
 
   /// The distinct walls (a wall's two surfaces count once) that `steps` cross under `pose` on
   /// `storey` (an A-Graph storey id).
   int Count(const std::vector<PathStep>& steps, const Pose2& pose, int storey) const;
 
   /// Whether a sight line from `from` to `to` (in M) under `pose` goes through an interior wall
-  /// of the storey (one whose faces all bound rooms) away from every doorway, in by one face and
+  /// of the storey (one whose faces all bound rooms) outside every doorway (its half-width +
+  /// sight_margin), in by one face and
   /// out by the other. Exterior walls and walls of one face never block: they may hold windows
   /// the A-Graph does not have.
   bool Blocks(const Eigen::Vector2d& from, const Eigen::Vector2d& to, const Pose2& pose,
@@ -56,7 +59,8 @@ class WallCrossings {
   };
   struct Door {
     Eigen::Vector2d position;
-    double reach;  // half-width + margin
+    double reach;        // half-width + door_margin
+    double sight_reach;  // half-width + sight_margin
   };
   struct Storey {
     std::vector<Surface> surfaces;
@@ -70,7 +74,7 @@ class WallCrossings {
     Eigen::Vector2d at;
   };
 
-  bool NearDoor(const Storey& storey, const Eigen::Vector2d& p) const;
+  bool NearDoor(const Storey& storey, const Eigen::Vector2d& p, bool sight) const;
   /// The walls `steps` go through (Count); with `sight`, interior walls only and the first
   /// one found ends the walk.
   std::set<int> Through(const std::vector<PathStep>& steps, const Pose2& pose, int storey,

@@ -41,7 +41,7 @@ GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {
 
 std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   a_rooms_ = DescribeARooms(graph);
-  crossings_ = WallCrossings(graph, config_.door_margin);
+  crossings_ = WallCrossings(graph, config_.door_margin, config_.sight_door_margin);
   surfaces_ = SurfaceEvidence(graph, config_);
   doorways_ = DoorwayEvidence(graph, config_);
   a_sha256_ = graph.source.sha256;

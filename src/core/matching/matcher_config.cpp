@@ -45,6 +45,7 @@ std::string MatcherConfig::Validate() const {
       {"doorway_width_tolerance", doorway_width_tolerance, 0.0, 5.0, true},
       {"sight_penalty", sight_penalty, 0.0, 10.0, false},
       {"sight_viewpoints", static_cast<double>(sight_viewpoints), 1.0, 100.0, false},
+      {"sight_door_margin", sight_door_margin, 0.0, 5.0, false},
       {"ambiguity_margin", ambiguity_margin, 0.0, 100.0, false},
       {"doubt_centre_tolerance", doubt_centre_tolerance, 0.0, 10.0, false},
       {"cluster_yaw_deg", cluster_yaw_deg, 0.0, 90.0, true},

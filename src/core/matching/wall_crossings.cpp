@@ -51,7 +51,7 @@ std::vector<PathStep> WalkedPath(const sgraph::SGraph& graph, double max_step) {
   return steps;
 }
 
-WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin) {
+WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin, double sight_margin) {
   std::set<int> bounds_room;  // surface ids some room lists
   for (const auto& r : graph.rooms) bounds_room.insert(r.surfaces.begin(), r.surfaces.end());
   for (const auto& s : graph.surfaces) {
@@ -86,14 +86,16 @@ WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin) {
   }
   for (const auto& d : graph.doorways) {
     if (!d.position.allFinite() || !std::isfinite(d.width)) continue;
-    storeys_[d.storey].doors.push_back(
-        {d.position.head<2>(), 0.5 * std::max(d.width, 0.0) + door_margin});
+    storeys_[d.storey].doors.push_back({d.position.head<2>(),
+                                        0.5 * std::max(d.width, 0.0) + door_margin,
+                                        0.5 * std::max(d.width, 0.0) + sight_margin});
   }
 }
 
-bool WallCrossings::NearDoor(const Storey& storey, const Eigen::Vector2d& p) const {
-  return std::any_of(storey.doors.begin(), storey.doors.end(),
-                     [&](const Door& d) { return (d.position - p).norm() <= d.reach; });
+bool WallCrossings::NearDoor(const Storey& storey, const Eigen::Vector2d& p, bool sight) const {
+  return std::any_of(storey.doors.begin(), storey.doors.end(), [&](const Door& d) {
+    return (d.position - p).norm() <= (sight ? d.sight_reach : d.reach);
+  });
 }
 
 int WallCrossings::Count(const std::vector<PathStep>& steps, const Pose2& pose, int storey) const {
@@ -147,7 +149,7 @@ std::set<int> WallCrossings::Through(const std::vector<PathStep>& steps, const P
     for (const auto& [distance, i, at] : hits) {
       const Surface& surface = s.surfaces[i];
       if (sight && !surface.interior) continue;
-      const bool door = NearDoor(s, at);
+      const bool door = NearDoor(s, at, sight);
       if (!surface.two_faced) {
         if (!door) crossed.insert(surface.wall);
         continue;
