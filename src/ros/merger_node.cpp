@@ -146,13 +146,14 @@ class MergerNode {
       if (went_back) PublishStatus();  // the change at once, not at the next status tick
       return;
     }
-    const Eigen::Isometry3d bim_T_odom = bim_T_odom_;
+    const merging::OdometryAnchor anchor = anchor_;
     const Eigen::Isometry3d bim_T_map = bim_T_map_;
     const Eigen::Matrix3d covariance = covariance_;
     lock.unlock();
 
-    // The pose: the merged revision's B <- odom and this odometry reading (no tf needed).
-    const Eigen::Isometry3d bim_T_base = bim_T_odom * odom_T_base;
+    // The pose: the merged revision's newest keyframe and the odometry since, calibrated (no tf
+    // needed).
+    const Eigen::Isometry3d bim_T_base = anchor.Pose(odom_T_base);
     geometry_msgs::PoseWithCovarianceStamped pose;
     pose.header.stamp = stamp;
     pose.header.frame_id = params_.bim_frame;
@@ -173,7 +174,7 @@ class MergerNode {
     }
     last_tf_stamp_ = stamp;
     geometry_msgs::TransformStamped t =
-        tf2::eigenToTransform(bim_T_odom * map_T_odom.value().inverse());
+        tf2::eigenToTransform(bim_T_base * (map_T_odom.value() * odom_T_base).inverse());
     t.header.stamp = stamp;
     t.header.frame_id = params_.bim_frame;
     t.child_frame_id = params_.map_frame;
@@ -322,7 +323,7 @@ class MergerNode {
       if (out.merged) {
         localized_ = true;
         bim_T_map_ = out.bim_T_map;
-        bim_T_odom_ = out.bim_T_odom;
+        anchor_ = out.anchor;
         covariance_ = out.covariance;
         if (!state_.localized() || out.event == MergeEvent::kLocalized) {
           state_.SetLocalized(stamp, "localized: " + out.message);
@@ -381,7 +382,7 @@ class MergerNode {
   bool localized_{false};
   bool status_dirty_{false};
   Eigen::Isometry3d bim_T_map_{Eigen::Isometry3d::Identity()};
-  Eigen::Isometry3d bim_T_odom_{Eigen::Isometry3d::Identity()};
+  merging::OdometryAnchor anchor_;  // the pose: anchor_.Pose(odom_T_base)
   Eigen::Matrix3d covariance_{Eigen::Matrix3d::Identity()};
   merging::MergeState state_;
   ros::Time last_odom_stamp_;

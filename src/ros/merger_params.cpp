@@ -20,6 +20,7 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "prior_yaw_sigma_deg", c.prior_yaw_sigma_deg);
   Read(pnh, "optimize_sgraph", c.optimize_sgraph);
   Read(pnh, "window_keyframes", c.window_keyframes);
+  Read(pnh, "calibrate_odometry", c.calibrate_odometry);
   Read(pnh, "max_iterations", c.max_iterations);
   Read(pnh, "max_solver_time", c.max_solver_time);
   Read(pnh, "num_threads", c.num_threads);

@@ -9,6 +9,7 @@
 #include "is_graphs/merging/consistency_check.h"
 #include "is_graphs/merging/is_graph_problem.h"
 #include "is_graphs/merging/merger_config.h"
+#include "is_graphs/merging/odometry_extrapolation.h"
 #include "is_graphs/merging/recent_evidence.h"
 #include "is_graphs/sgraph/sgraph.h"
 
@@ -34,6 +35,10 @@ struct MergeOutput {
   /// bim_T_odom * odom_T_base for any later odometry reading. Anchored on the revision's own
   /// keyframe, it does not depend on the map -> odom of a newer revision.
   Eigen::Isometry3d bim_T_odom{Eigen::Isometry3d::Identity()};
+  /// The same keyframe, with the odometry's scale and yaw bias estimated from the revision's
+  /// steps (CalibrateOdometry): anchor.Pose(odom_T_base) is the published pose. With too few
+  /// steps the calibration is the identity and the pose is bim_T_odom * odom_T_base.
+  OdometryAnchor anchor;
   Eigen::Matrix3d covariance{Eigen::Matrix3d::Identity()};  // of (x, y, yaw)
   MergeSolution solution;
   ConsistencyReport consistency;

@@ -54,6 +54,11 @@ struct MergerConfig {
   double max_jump_translation{0.5};  // m
   double max_jump_yaw_deg{5.0};
 
+  // The pose between revisions: the odometry since the newest merged keyframe, its scale and
+  // yaw bias per metre estimated from the revision's keyframe steps (CalibrateOdometry); false:
+  // the odometry as it is.
+  bool calibrate_odometry{true};
+
   // Floors of the published pose covariance (added to the propagated B_x_M covariance).
   double pose_sigma_xy{0.02};  // m
   double pose_sigma_z{0.05};   // m

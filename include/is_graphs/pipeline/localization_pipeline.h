@@ -82,6 +82,7 @@ class LocalizationPipeline {
   matching::GraphMatcher matcher_;
   merging::Merger merger_;
   Eigen::Isometry3d bim_T_odom_{Eigen::Isometry3d::Identity()};
+  merging::OdometryAnchor anchor_;  // the published pose: anchor_.Pose(odom_T_base)
   Eigen::Isometry3d bim_T_map_{Eigen::Isometry3d::Identity()};
   StageTimes times_;
   std::vector<PipelineEvent> events_;

@@ -151,6 +151,10 @@ MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) 
     const Eigen::Isometry3d c = out.bim_T_map * map_T_k * k->odom_pose.inverse();
     out.bim_T_odom = geometry::IsometryFromXYYaw(c.translation().x(), c.translation().y(),
                                                  geometry::Yaw(c), c.translation().z());
+    out.anchor.odom_T_keyframe = k->odom_pose;
+    out.anchor.bim_T_keyframe = out.bim_T_odom * k->odom_pose;
+    if (config_.calibrate_odometry)
+      out.anchor.calibration = CalibrateOdometry(s_graph, out.solution.keyframes);
   }
   out.message = out.consistency.message;
   return out;

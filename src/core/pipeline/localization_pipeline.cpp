@@ -33,6 +33,7 @@ std::string LocalizationPipeline::SetAGraph(const agraph::AGraph& graph) {
   if (!error.empty()) return error;
   matcher_.SetAGraph(graph);
   bim_T_odom_ = bim_T_map_ = Eigen::Isometry3d::Identity();
+  anchor_ = {};
   return "";
 }
 
@@ -44,7 +45,7 @@ std::optional<Eigen::Isometry3d> LocalizationPipeline::AddOdometry(
     matcher_.ForgetHistory();
   }
   if (!r.accepted || !merger_.merged()) return std::nullopt;
-  return bim_T_odom_ * odom_T_base;
+  return anchor_.Pose(odom_T_base);
 }
 
 sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
@@ -57,6 +58,7 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
     merger_.Reset();
     matcher_.ForgetHistory();
     bim_T_odom_ = bim_T_map_ = Eigen::Isometry3d::Identity();
+    anchor_ = {};
     PipelineEvent e;
     e.stamp = scan.stamp;
     e.kind = "sgraph_restarted";
@@ -103,7 +105,7 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
 
 void LocalizationPipeline::Record(double stamp, unsigned revision,
                                   const merging::MergeOutput& out) {
-  if (out.merged) bim_T_odom_ = out.bim_T_odom, bim_T_map_ = out.bim_T_map;
+  if (out.merged) bim_T_odom_ = out.bim_T_odom, bim_T_map_ = out.bim_T_map, anchor_ = out.anchor;
   if (out.event == merging::MergeEvent::kNone || out.event == merging::MergeEvent::kUpdated) return;
   PipelineEvent e;
   e.stamp = stamp;
