@@ -1,10 +1,11 @@
 // Sight lines as evidence against a hypothesis: WallCrossings::Blocks (interior walls block,
 // doorways and exterior walls do not), SeenFrom (the keyframes that observed each plane) and
-// HiddenWalls (a plane every sight line to which goes through an interior wall), on a hand-made
-// plan: rooms 0 | 1 split by an interior wall at x = 4 with a door at y = 2.5 (y 0..5), and an
-// exterior wall at x = 8 (room 1's east side; its outer face bounds no room).
+// HiddenWalls (the share of a plane every sight line to which goes through an interior wall),
+// on a hand-made plan: rooms 0 | 1 split by an interior wall at x = 4 with a door at y = 2.5 (y
+// 0..5), and an exterior wall at x = 8 (room 1's east side; its outer face bounds no room).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 
@@ -65,19 +66,22 @@ WallSegment Segment(int id, Eigen::Vector2d a, Eigen::Vector2d b, Eigen::Vector2
 TEST(SightLines, APlaneIsHiddenWhenEveryLineToItGoesThroughAWall) {
   const WallCrossings crossings(Plan(), 0.4);
   const Pose2 identity;
-  // Room 1's east wall (x = 7.9, y 0..5, facing west) seen from room 0 through the door: clear.
+  // Room 1's east wall (x = 7.9, y 0..5, facing west) seen from room 0 through the door: the
+  // middle 3.4 m in view, its 4 of 16 samples nearest the ends behind the wall.
   const WallSegment east = Segment(7, {7.9, 0.0}, {7.9, 5.0}, {-1.0, 0.0});
-  EXPECT_EQ(HiddenWalls({{east, {{2.0, 2.5}}}}, crossings, identity, 0, 2.0), 0.0);
+  EXPECT_NEAR(HiddenWalls({{east, {{2.0, 2.5}}}}, crossings, identity, 0, 2.0), 0.25, 1e-12);
+  // ... seen from inside room 1 too, all of it is in view.
+  EXPECT_EQ(HiddenWalls({{east, {{2.0, 2.5}, {6.0, 2.5}}}}, crossings, identity, 0, 2.0), 0.0);
   // Only its south metre, seen from room 0's south-west corner: every line through the wall.
   const WallSegment south = Segment(8, {7.9, 0.0}, {7.9, 1.0}, {-1.0, 0.0});
   EXPECT_NEAR(HiddenWalls({{south, {{0.5, 0.3}}}}, crossings, identity, 0, 2.0), 0.5, 1e-12);
   // ... one clear viewpoint of several suffices.
   EXPECT_EQ(HiddenWalls({{south, {{0.5, 0.3}, {6.0, 1.0}}}}, crossings, identity, 0, 2.0), 0.0);
-  // Hidden planes add up, each min(1, length / full_length).
+  // Hidden shares add up, each weighed min(1, length / full_length).
   const WallSegment behind = Segment(9, {7.9, 0.0}, {7.9, 0.5}, {-1.0, 0.0});
   EXPECT_NEAR(HiddenWalls({{south, {{0.5, 0.3}}}, {behind, {{0.5, 0.3}}}, {east, {{2.0, 2.5}}}},
                           crossings, identity, 0, 2.0),
-              0.75, 1e-12);
+              1.0, 1e-12);
   // Under a motion that puts the viewpoint into room 1 (5.5, 0.3) the plane lies outside, behind
   // the exterior wall: not hidden (a window).
   const Pose2 shifted{0.0, {5.0, 0.0}};
@@ -108,9 +112,11 @@ TEST(SightLines, SeenFromTakesTheObservingKeyframesSpreadOverTheirOrder) {
 }
 
 // The hall of each project building, with the walls of the rooms behind its doorways mapped
-// through them and the keyframes that saw them (at its centre and inside each doorway): under
-// the truth, in a building built as planned, no plane is hidden.
-TEST(SightLines, UnderTheTruthNothingSeenIsHidden) {
+// through them as far as they were seen, and the keyframes that saw them (at its centre and
+// inside each doorway): under the truth, in a building built as planned, little is hidden (the
+// middle of a wall seen through two doorways lies inside its mapped extent but out of view):
+// at most a quarter of the weighed planes. Measured: 0.45-1.67 of 8-22.
+TEST(SightLines, UnderTheTruthLittleSeenIsHidden) {
   for (const char* name : {"office.ifc", "rotated.ifc", "large.ifc", "symmetric.ifc"}) {
     IS_GRAPHS_BUILDING_OR_SKIP(g, testing::ProjectBim(name));
     int hall = 0;
@@ -151,9 +157,14 @@ TEST(SightLines, UnderTheTruthNothingSeenIsHidden) {
     const Eigen::Vector3d xi = geometry::ToXYYaw(s.bim_T_map);
     const Pose2 truth{xi.z(), xi.head<2>()};
     const int storey = g->rooms[hall].storey;
-    EXPECT_EQ(HiddenWalls(seen, crossings, truth, storey, config.surface_full_length), 0.0) << name;
-    std::printf("[ sight    ] %s: %zu loose planes seen from %zu keyframes\n", name, seen.size(),
-                stops.size());
+    double weight = 0.0;
+    for (const auto& w : seen) weight += std::min(1.0, w.wall.length / config.surface_full_length);
+    const double hidden = HiddenWalls(seen, crossings, truth, storey, config.surface_full_length);
+    EXPECT_LE(hidden, 0.25 * weight) << name;
+    std::printf(
+        "[ sight    ] %s: %zu loose planes (weight %.2f) seen from %zu keyframes: %.2f "
+        "hidden under the truth\n",
+        name, seen.size(), weight, stops.size(), hidden);
   }
 }
 

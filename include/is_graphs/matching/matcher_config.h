@@ -38,7 +38,7 @@ struct MatcherConfig {
   // sight line from the keyframes that observed them through an interior BIM wall): each costs
   // up to sight_penalty (x min(1, length / surface_full_length)); 0: not used.
   double sight_penalty{0.1};
-  int sight_viewpoints{4};         // keyframes per plane whose sight lines are checked
+  int sight_viewpoints{12};        // keyframes per plane whose sight lines are checked
   double sight_door_margin{0.15};  // a sight line this far beyond a doorway's half-width is
                                    // through the wall (door_margin is for the walked path)
   // --- decision ---

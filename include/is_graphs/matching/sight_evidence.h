@@ -25,13 +25,14 @@ std::vector<SeenWall> SeenFrom(const sgraph::SGraph& graph, const std::vector<Wa
 
 /// Free space against the BIM's walls: a wall plane the robot saw was in its line of sight.
 /// Under a wrong motion a plane seen through a doorway can land behind a BIM wall, where the
-/// robot could not have seen it. A plane is hidden under `pose` when every sight line, from each
-/// of its viewpoints to each point along its extent (every 0.3 m, at most 16, taken 0.2 m in
-/// front of it), goes through an interior BIM wall away from the doorways (WallCrossings::Blocks;
-/// exterior walls never block: windows). Returns Σ over hidden planes of
-/// min(1, length / full_length). Under the truth every plane has a clear line unless a wall of
-/// the plan was not built, or an interior wall has a glass pane or opening the A-Graph lacks:
-/// callers weigh it, they do not veto on it.
+/// robot could not have seen it. A point along a plane (every 0.3 m, at most 16, taken 0.2 m in
+/// front of it) is hidden under `pose` when the sight line to it from each of the plane's
+/// viewpoints goes through an interior BIM wall outside the doorways (WallCrossings::Blocks;
+/// exterior walls never block: windows). Returns Σ over planes of min(1, length / full_length)
+/// x the share of its points hidden. Under the truth every part of a plane was seen from some
+/// keyframe (its extent is the union of what was seen), so with enough viewpoints nothing is
+/// hidden, unless a wall of the plan was not built, or an interior wall has a glass pane or an
+/// opening the A-Graph lacks: callers weigh it, they do not veto on it.
 double HiddenWalls(const std::vector<SeenWall>& walls, const WallCrossings& crossings,
                    const Pose2& pose, int storey, double full_length);
 

@@ -71,7 +71,8 @@ SyntheticSGraph MakeSyntheticSGraph(const agraph::AGraph& building,
 /// Adds to s.graph the observations of its planes of no S-room from its keyframes within 10 m
 /// that had a clear sight line to them (WallCrossings::Blocks, under the truth) in the building
 /// as built: the plan less config.unbuilt_walls interior walls of config.rooms (drawn from
-/// config.seed; recorded in s.unbuilt). MakeSyntheticSGraph calls it with `observations`.
+/// config.seed; recorded in s.unbuilt); each such plane's extent is cut to the part of it seen
+/// (as the S-Graph maps it). MakeSyntheticSGraph calls it with `observations`.
 void AddSyntheticObservations(const agraph::AGraph& building, const SyntheticSGraphConfig& config,
                               SyntheticSGraph& s);
 

@@ -45,17 +45,16 @@ double HiddenWalls(const std::vector<SeenWall>& walls, const WallCrossings& cros
     const WallSegment& w = s.wall;
     const int samples =
         std::clamp(static_cast<int>(std::ceil(w.length / kSampleSpacing)), 1, kMaxSamples);
-    bool clear = false;
-    for (int i = 0; i < samples && !clear; ++i) {
+    int blocked = 0;
+    for (int i = 0; i < samples; ++i) {
       const Eigen::Vector2d target =
           w.a + (w.b - w.a) * ((i + 0.5) / samples) + kStandOff * w.normal;
-      for (const auto& from : s.from)
-        if (!crossings.Blocks(from, target, pose, storey)) {
-          clear = true;
-          break;
-        }
+      if (std::all_of(s.from.begin(), s.from.end(), [&](const Eigen::Vector2d& from) {
+            return crossings.Blocks(from, target, pose, storey);
+          }))
+        ++blocked;
     }
-    if (!clear) hidden += std::min(1.0, w.length / full_length);
+    hidden += std::min(1.0, w.length / full_length) * blocked / samples;
   }
   return hidden;
 }

@@ -413,7 +413,10 @@ void AddSyntheticObservations(const agraph::AGraph& b, const SyntheticSGraphConf
   auto to_bim = [&](const Eigen::Vector2d& m) {
     return (out.bim_T_map * Eigen::Vector3d(m.x(), m.y(), 0.0)).head<2>().eval();
   };
-  for (const auto& p : g.planes) {
+  // Each plane is mapped as far as it was seen: its extent is cut to the part of it (in 20
+  // pieces) some keyframe had in view.
+  constexpr int kPieces = 20;
+  for (auto& p : g.planes) {
     const auto truth = out.plane_truth.find(p.id);
     if (in_rooms.count(p.id) || truth == out.plane_truth.end()) continue;
     const int storey = b.surfaces[truth->second].storey;
@@ -421,16 +424,24 @@ void AddSyntheticObservations(const agraph::AGraph& b, const SyntheticSGraphConf
     Eigen::Vector2d n = (out.bim_T_map.linear() * p.plane.normal).head<2>();
     if (n.norm() < 0.5) continue;
     n.normalize();
+    int first = kPieces, last = -1;
     for (const auto& k : g.keyframes) {
       const Eigen::Vector2d at = to_bim(k.pose.translation().head<2>());
       if ((0.5 * (a + e) - at).norm() > 10.0) continue;
       bool seen = false;
-      for (int i = 0; i < 5 && !seen; ++i) {
-        const Eigen::Vector2d q = a + (e - a) * ((i + 0.5) / 5.0) + 0.2 * n;
-        seen = n.dot(at - q) > 0.0 && !sight.Blocks(at, q, identity, storey);
+      for (int i = 0; i < kPieces; ++i) {
+        const Eigen::Vector2d q = a + (e - a) * ((i + 0.5) / kPieces) + 0.2 * n;
+        if (n.dot(at - q) > 0.0 && !sight.Blocks(at, q, identity, storey)) {
+          seen = true;
+          first = std::min(first, i), last = std::max(last, i);
+        }
       }
       if (seen) g.observations.push_back({k.id, p.id, p.plane, Eigen::Matrix3d::Identity()});
     }
+    if (last < 0) continue;
+    const Eigen::Vector2d start = p.start, along = p.end - p.start;
+    p.start = start + along * (static_cast<double>(first) / kPieces);
+    p.end = start + along * (static_cast<double>(last + 1) / kPieces);
   }
 }
 
