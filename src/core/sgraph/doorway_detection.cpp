@@ -69,8 +69,6 @@ double GapToCollinearPiece(const WallLine& wall, double u, const std::vector<Wal
 struct Crossing {
   const WallLine* wall;
   Eigen::Vector2d at;
-  double floor{0.0};
-  int plane{0};
   int keyframe{0};  // before the step
   double width{0.0};
 };
@@ -100,7 +98,7 @@ std::vector<Doorway> DetectDoorways(const SGraph& graph, const DoorwayConfig& co
         width = GapToCollinearPiece(w, u, walls, config);
         if (width <= 0.0) continue;
       }
-      crossings.push_back({&w, x, w.floor, w.id, k.previous, width});
+      crossings.push_back({&w, x, k.previous, width});
     }
   }
 
@@ -128,9 +126,9 @@ std::vector<Doorway> DetectDoorways(const SGraph& graph, const DoorwayConfig& co
       into->wall = c.wall;
     }
     into->sum += c.at, ++into->count;
-    into->floor = std::min(into->floor, c.floor);
+    into->floor = std::min(into->floor, c.wall->floor);
     if (c.width > 0.0) into->width_sum += c.width, ++into->widths;
-    into->planes.insert(c.plane);
+    into->planes.insert(c.wall->id);
     into->keyframes.insert(c.keyframe);
   }
 

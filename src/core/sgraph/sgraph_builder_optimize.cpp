@@ -115,10 +115,13 @@ double SGraphBuilder::DoorwayWidthLocked(const Doorway& doorway, const SGraph& g
   const DoorwayConfig& c = frontend_.doorways;
   const double reach = c.max_width + 0.5;
   std::set<size_t> near;  // keyframe indices: each step's two ends and one more either side
-  for (int id : doorway.keyframes)
-    for (size_t i = 0; i < keyframes_.size(); ++i)
-      if (keyframes_[i].id == id)
-        for (size_t j = i > 0 ? i - 1 : 0; j <= i + 2 && j < clouds_.size(); ++j) near.insert(j);
+  for (int id : doorway.keyframes) {
+    const auto k = std::find_if(keyframes_.begin(), keyframes_.end(),
+                                [&](const Keyframe& x) { return x.id == id; });
+    if (k == keyframes_.end()) continue;
+    const size_t i = static_cast<size_t>(k - keyframes_.begin());
+    for (size_t j = i > 0 ? i - 1 : 0; j <= i + 2 && j < clouds_.size(); ++j) near.insert(j);
+  }
   std::vector<double> coords;
   for (size_t i : near) {
     const Eigen::Isometry3d& pose = keyframes_[i].pose;
