@@ -53,6 +53,14 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "surface_min_height", c.surface_min_height);
   ros_params::Read(pnh, "door_margin", c.door_margin);
   ros_params::Read(pnh, "max_path_step", c.max_path_step);
+  ros_params::Read(pnh, "proposals", c.proposals);
+  ros_params::Read(pnh, "proposal_corner_reach", c.proposal_corner_reach);
+  ros_params::Read(pnh, "proposal_min_walls", c.proposal_min_walls);
+  ros_params::Read(pnh, "proposal_min_share", c.proposal_min_share);
+  ros_params::Read(pnh, "proposal_margin", c.proposal_margin);
+  ros_params::Read(pnh, "proposal_margin_share", c.proposal_margin_share);
+  ros_params::Read(pnh, "proposal_crossing_penalty", c.proposal_crossing_penalty);
+  ros_params::Read(pnh, "proposal_max_candidates", c.proposal_max_candidates);
   ros_params::Read(pnh, "ambiguity_margin", c.ambiguity_margin);
   ros_params::Read(pnh, "doubt_centre_tolerance", c.doubt_centre_tolerance);
   ros_params::Read(pnh, "cluster_yaw_deg", c.cluster_yaw_deg);

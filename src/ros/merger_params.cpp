@@ -30,6 +30,7 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "min_inlier_fraction", c.min_inlier_fraction);
   Read(pnh, "min_surface_inliers", c.min_surface_inliers);
   Read(pnh, "min_room_inliers", c.min_room_inliers);
+  Read(pnh, "min_surface_inliers_without_rooms", c.min_surface_inliers_without_rooms);
   Read(pnh, "max_chi2_per_dof", c.max_chi2_per_dof);
   Read(pnh, "max_jump_translation", c.max_jump_translation);
   Read(pnh, "recent_keyframes", c.recent_keyframes);

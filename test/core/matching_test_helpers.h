@@ -105,6 +105,26 @@ inline bool MatchIsCorrect(const matching::GraphMatch& m, const matching::Synthe
     const double e = ((m.bim_T_map * c) - (truth * c)).head<2>().norm();
     if (e > 0.6) ok = false, out << "room " << r.id << " placed " << e << " m off; ";
   }
+  // The mapped walls and the walk placed where they are (a match from wall planes alone has no
+  // room to check).
+  for (const auto& p : s.graph.planes) {
+    if (!p.start.allFinite() || !p.end.allFinite()) continue;
+    const Eigen::Vector2d mid = 0.5 * (p.start + p.end);
+    const Eigen::Vector3d c(mid.x(), mid.y(), 0.0);
+    const double e = ((m.bim_T_map * c) - (truth * c)).head<2>().norm();
+    if (e > 0.6) {
+      ok = false, out << "plane " << p.id << " placed " << e << " m off; ";
+      break;
+    }
+  }
+  for (const auto& k : s.graph.keyframes) {
+    const Eigen::Vector3d c(k.pose.translation().x(), k.pose.translation().y(), 0.0);
+    const double e = ((m.bim_T_map * c) - (truth * c)).head<2>().norm();
+    if (e > 0.6) {
+      ok = false, out << "keyframe " << k.id << " placed " << e << " m off; ";
+      break;
+    }
+  }
   for (const auto& p : m.room_pairs) {
     const auto it = s.room_truth.find(p.s_id);
     if (it == s.room_truth.end() || it->second != p.a_id)

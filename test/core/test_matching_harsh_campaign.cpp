@@ -152,6 +152,7 @@ TEST(MatchingHarshCampaign, ALoneHypothesisIsDoubtedWhereTheTruthMissedTheCentre
   // and the doubt is tested on its own (as the room pairs alone would have it).
   MatcherConfig pairs_only;
   pairs_only.surface_evidence_weight = 0.0;
+  pairs_only.proposals = false;  // they weigh every wall plane
   MatcherConfig strict = pairs_only;
   strict.doubt_centre_tolerance = 0.0;
   GraphMatcher alone(strict), doubting(pairs_only), with_walls;

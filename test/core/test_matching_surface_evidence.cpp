@@ -147,6 +147,7 @@ TEST(SurfaceEvidence, WallsSeenThroughDoorwaysTellAHallsTwinsApart) {
     // Without the evidence the S-Graph with the walls seen is as undecided as without them.
     MatcherConfig pairs_only;
     pairs_only.surface_evidence_weight = 0.0;
+    pairs_only.proposals = false;  // which weigh every wall plane seen
     GraphMatcher without(pairs_only);
     without.SetAGraph(*g);
     EXPECT_EQ(without.Match(seen.graph).status, before.status) << name;

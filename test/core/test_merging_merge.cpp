@@ -393,6 +393,31 @@ TEST(ConsistencyCheck, ARoomTurningOutlierDropsTheRoomNotTheMerge) {
   EXPECT_FALSE(CheckConsistency(solution, config, false).consistent);
 }
 
+// A match from wall planes alone (the matcher's proposals, before any room is closed): the merge
+// starts on enough surface inliers, the height of M from the storey of the surfaces.
+TEST(Merge, StartsFromSurfacePairsAlone) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.5);
+  SyntheticCase c = MakeCase(building, truth, 0.0);
+  c.match.room_pairs.clear();
+  ASSERT_GE(c.match.surface_pairs.size(), 6u);
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(out.event, MergeEvent::kLocalized) << out.message;
+  ExpectRecovered(out, truth, 1e-3, 0.05);
+  // Too few of them: refused, naming why.
+  MergerConfig strict;
+  strict.min_surface_inliers_without_rooms = static_cast<int>(c.match.surface_pairs.size()) + 1;
+  Merger refusing{strict};
+  ASSERT_EQ(refusing.SetAGraph(building), "");
+  const MergeOutput refused = refusing.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(refused.event, MergeEvent::kRejected);
+  EXPECT_NE(refused.message.find("too few surface inliers for a match without rooms"),
+            std::string::npos)
+      << refused.message;
+}
+
 TEST(MergerConfig, ValidateNamesTheField) {
   EXPECT_EQ(MergerConfig().Validate(), "");
   MergerConfig c;
@@ -407,6 +432,9 @@ TEST(MergerConfig, ValidateNamesTheField) {
   c = MergerConfig();
   c.window_keyframes = -1;
   EXPECT_EQ(c.Validate().rfind("window_keyframes", 0), 0u) << c.Validate();
+  c = MergerConfig();
+  c.min_surface_inliers_without_rooms = -1;
+  EXPECT_EQ(c.Validate().rfind("min_surface_inliers_without_rooms", 0), 0u) << c.Validate();
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The pose between S-Graph revisions: CalibrateOdometry recovers a known scale error and yaw bias
 // from keyframe steps (optimized poses = the truth, odometry = the truth with those errors), and
 // OdometryAnchor::Pose with it puts a later odometry reading where the truth is; with too few
-// steps it is the identity (the pose as before).
+// steps it is the identity (the pose as before), with a few it is shrunk towards it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -48,7 +48,9 @@ Walk MakeWalk(int n, double scale_error, double yaw_per_m, double step = 0.8) {
 
 TEST(OdometryCalibration, RecoversAScaleErrorAndAYawBias) {
   const Walk w = MakeWalk(30, 0.06, 0.006);
-  const OdometryCalibration c = CalibrateOdometry(w.graph, {});
+  OdometryCalibrationConfig exact;
+  exact.prior_weight = 0.0;  // the least squares alone
+  const OdometryCalibration c = CalibrateOdometry(w.graph, {}, exact);
   EXPECT_EQ(c.steps, 29);
   EXPECT_NEAR(c.scale, 1.0 / 1.06, 1e-9);
   EXPECT_NEAR(c.yaw_per_m, -0.006 / 1.06, 1e-9);  // per metre of odometry
@@ -58,11 +60,34 @@ TEST(OdometryCalibration, RecoversAScaleErrorAndAYawBias) {
   const OdometryCalibration none = CalibrateOdometry(w.graph, as_odometry);
   EXPECT_NEAR(none.scale, 1.0, 1e-12);
   EXPECT_NEAR(none.yaw_per_m, 0.0, 1e-12);
+  // With the prior (the default), 29 steps of 0.8 m keep 18.56 / 19.06 of the correction.
+  const OdometryCalibration shrunk = CalibrateOdometry(w.graph, {});
+  EXPECT_NEAR(shrunk.scale - 1.0, (1.0 / 1.06 - 1.0) * 18.56 / 19.06, 2e-4);
+}
+
+// Right after a merge starts (the matcher's proposals: 2-4 keyframes), three steps already
+// calibrate most of a 6 % scale error, and halve the pose's error 1.6 m on.
+TEST(OdometryCalibration, AFewStepsCalibrateInPart) {
+  const Walk w = MakeWalk(6, 0.06, 0.006);
+  sgraph::SGraph upto;
+  upto.keyframes.assign(w.graph.keyframes.begin(), w.graph.keyframes.begin() + 4);
+  const OdometryCalibration c = CalibrateOdometry(upto, {});
+  EXPECT_EQ(c.steps, 3);
+  EXPECT_LT(c.scale, 1.0 - 0.7 * (1.0 - 1.0 / 1.06));  // most of the way
+  EXPECT_GT(c.scale, 1.0 / 1.06);                      // never past the truth
+  OdometryAnchor anchor;
+  anchor.odom_T_keyframe = w.odom[3];
+  anchor.bim_T_keyframe = w.truth[3];
+  const double raw = (anchor.Pose(w.odom[5]).translation() - w.truth[5].translation()).norm();
+  anchor.calibration = c;
+  const double calibrated =
+      (anchor.Pose(w.odom[5]).translation() - w.truth[5].translation()).norm();
+  EXPECT_LT(calibrated, 0.5 * raw) << "raw " << raw;
 }
 
 TEST(OdometryCalibration, TooFewStepsShortStepsAndClampsLeaveItSafe) {
-  EXPECT_EQ(CalibrateOdometry(MakeWalk(8, 0.06, 0.006).graph, {}).steps, 0);  // 7 < 8 steps
-  const OdometryCalibration c = CalibrateOdometry(MakeWalk(8, 0.06, 0.006).graph, {});
+  EXPECT_EQ(CalibrateOdometry(MakeWalk(2, 0.06, 0.006).graph, {}).steps, 0);  // 1 < 2 steps
+  const OdometryCalibration c = CalibrateOdometry(MakeWalk(2, 0.06, 0.006).graph, {});
   EXPECT_EQ(c.scale, 1.0);
   EXPECT_EQ(c.yaw_per_m, 0.0);
   // Turns on the spot (steps of 0.1 m) are left out.

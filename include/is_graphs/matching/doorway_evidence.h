@@ -58,7 +58,12 @@ class DoorwayEvidence {
   };
   double tolerance_{0.5};
   double width_tolerance_{0.35};
-  std::unordered_map<int, std::vector<Door>> storeys_;
+  struct Storey {
+    std::vector<Door> doors;
+    std::unordered_map<long long, std::vector<int>> cells;  // cell of side cell_ -> door indices
+  };
+  double cell_{1.0};  // m: at least doorway_tolerance, so a pair is in the 3 x 3 cells around
+  std::unordered_map<int, Storey> storeys_;
 };
 
 }  // namespace matching

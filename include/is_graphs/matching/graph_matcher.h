@@ -9,6 +9,7 @@
 #include "is_graphs/agraph/agraph.h"
 #include "is_graphs/matching/candidate_graph.h"
 #include "is_graphs/matching/candidate_index.h"
+#include "is_graphs/matching/corner_proposals.h"
 #include "is_graphs/matching/doorway_evidence.h"
 #include "is_graphs/matching/graph_match.h"
 #include "is_graphs/matching/hypothesis_scoring.h"
@@ -29,6 +30,7 @@ struct MatchStats {
   int reused_rooms{0};  // S-rooms whose candidates came from the previous revision
   int seeds{0};         // global candidates grown
   int hypotheses{0};    // distinct global candidates scored
+  int proposals{0};     // motions proposed by corners (step 6), 0 when not run
   double milliseconds{0.0};
 };
 
@@ -47,6 +49,11 @@ struct MatchStats {
 ///     loose planes it could only have seen through an interior BIM wall (HiddenWalls);
 ///  4. decision: hypotheses implying the same motion merged, the best score cluster
 ///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide);
+///  6. proposals (when 1-5 give no UNIQUE answer, e.g. before any room is closed): motions
+///     mapping corners of the seen wall planes onto the BIM's corners, with the hypotheses'
+///     motions, scored on every wall plane seen, the walked path and the sight lines (Propose);
+///     one clearly best gives UNIQUE with its surface pairs (and its room pairs where a
+///     hypothesis of the same motion has them).
 ///  5. doubt: a UNIQUE answer is re-checked by a second matcher whose room-centre gate is
 ///     doubt_centre_tolerance: where clutter moved the true room's centre out of the strict
 ///     gate, the truth is missing from the hypotheses and a lone wrong one would stand; a
@@ -99,6 +106,11 @@ class GraphMatcher {
   /// Step 3: scores `hypotheses` on their pairs and the `evidence`.
   void Score(std::vector<Hypothesis>& hypotheses, const Evidence& evidence,
              const std::vector<RoomDescriptor>& s_rooms) const;
+  /// doorway_evidence_weight x the doorways walked through that lie at BIM doorways under `h`,
+  /// and its bound (each pair scores at most 1).
+  double DoorsExplained(const Hypothesis& h, const Evidence& evidence,
+                        const std::vector<RoomDescriptor>& s_rooms) const;
+  double DoorsBound(const Evidence& evidence) const;
   /// sight_penalty x the loose planes `h` could not have seen (HiddenWalls).
   double Hidden(const Hypothesis& h, const Evidence& evidence) const;
   /// S-room id -> A-room id of the pairs of `h`.
@@ -109,6 +121,31 @@ class GraphMatcher {
                                   const Hypothesis& best,
                                   const std::vector<Eigen::Vector2d>& s_points,
                                   const Evidence& evidence);
+
+  /// Step 6: the proposals' decision. `best` and `competitors` carry pose, storey and score.
+  struct ProposalDecision {
+    MatchStatus status{MatchStatus::kNone};
+    Hypothesis best;
+    std::vector<Hypothesis> competitors;
+    std::vector<WallSegment> walls;  // the wall planes it was decided on
+    int candidates{0};
+    bool scored{false};  // best and competitors were scored (else too many to decide)
+  };
+  ProposalDecision Propose(const sgraph::SGraph& graph, const Evidence& evidence,
+                           const std::vector<Hypothesis>& hypotheses) const;
+  /// Fills `out` (UNIQUE) from a proposal: its surface pairs, and the room pairs of a
+  /// hypothesis of the same motion.
+  void FillFromProposal(const ProposalDecision& proposed, const std::vector<Hypothesis>& hypotheses,
+                        const std::vector<RoomDescriptor>& s_rooms, const Evidence& evidence,
+                        GraphMatch* out);
+  /// The room pairs of `h` (by S-room id) and its surface pairs (an S-plane with every piece of
+  /// its best-scoring A-feature).
+  std::vector<MatchPair> RoomPairs(const Hypothesis& h,
+                                   const std::vector<RoomDescriptor>& s_rooms) const;
+  std::vector<MatchPair> SurfacePairs(const Hypothesis& h,
+                                      const std::vector<RoomDescriptor>& s_rooms) const;
+  /// `pose` refitted to the planes of `walls` and the A-surfaces they lie along under it.
+  Pose2 Refine(const std::vector<WallSegment>& walls, const Pose2& pose, int storey) const;
 
   Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,
                   const std::vector<RoomDescriptor>& s_rooms,
@@ -122,6 +159,7 @@ class GraphMatcher {
   WallCrossings crossings_;
   SurfaceEvidence surfaces_;
   DoorwayEvidence doorways_;
+  std::vector<Corner> a_corners_;
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
   MatchStats stats_;

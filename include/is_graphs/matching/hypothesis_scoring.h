@@ -31,6 +31,9 @@ struct Hypothesis {
   double evidence{0.0};  // weighted SurfaceEvidence of the loose wall planes + DoorwayEvidence
   int crossings{-1};     // walls the walked path crosses under `pose`; -1: not evaluated
   double hidden{0.0};    // sight_penalty x HiddenWalls of the loose planes (with crossings)
+  // The bound on the lazy evidence still in `score` in its place (with crossings = -1: not
+  // evaluated; ScoreHypotheses).
+  double pending{0.0};
   double score{0.0};
   int rooms{0};  // matched S-rooms
 };
@@ -39,20 +42,30 @@ struct Hypothesis {
 /// fixes the motion only across an axis).
 double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfig& config);
 
-/// Scores every hypothesis: affinity + evidence(h) - wall_crossing_penalty x crossings(h) -
-/// hidden(h): evidence(h) what the S-Graph shows beyond the pairs that fits h (wall planes on the
-/// BIM's surfaces, doorways at its doorways, already weighted), crossings(h) the walls the
-/// walked path crosses under its motion, hidden(h) the weighted wall planes it could not have
-/// seen under it. crossings(h) and hidden(h) are evaluated best first and only while they can
-/// still change the decision: a hypothesis scoring more than ambiguity_margin below the best
-/// score so far can neither win nor compete, and keeps crossings = -1.
+/// Scores every hypothesis: affinity + evidence(h) + lazy(h) - wall_crossing_penalty x
+/// crossings(h) - hidden(h): evidence(h) and lazy(h) what the S-Graph shows beyond the pairs that
+/// fits h (wall planes on the BIM's surfaces, doorways at its doorways, already weighted),
+/// crossings(h) the walls the walked path crosses under its motion, hidden(h) the weighted wall
+/// planes it could not have seen under it. lazy(h) (at most lazy_bound), crossings(h) and
+/// hidden(h) are evaluated best first and only while they can still change the decision: a
+/// hypothesis whose score with lazy_bound in place of lazy(h) is more than ambiguity_margin
+/// below the best score so far can neither win nor compete, and keeps crossings = -1 and that
+/// optimistic score (pending = lazy_bound; Settle finishes it); one within reach gets lazy(h)
+/// first, and its crossings and hidden planes only if it is still within reach.
 /// (Penalising S-rooms a hypothesis pairs with nothing was tried and left out: it widened the
 /// gaps between partial hypotheses of a mirror image until one became UNIQUE.)
 void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
                      const std::function<double(const Hypothesis&)>& evidence,
+                     const std::function<double(const Hypothesis&)>& lazy, double lazy_bound,
                      const std::function<int(const Hypothesis&)>& crossings,
                      const std::function<double(const Hypothesis&)>& hidden,
                      const MatcherConfig& config);
+
+/// Evaluates what ScoreHypotheses left pending on `h` (crossings = -1): its lazy evidence in
+/// place of the bound, its crossings and hidden planes.
+void Settle(Hypothesis& h, const std::function<double(const Hypothesis&)>& lazy,
+            const std::function<int(const Hypothesis&)>& crossings,
+            const std::function<double(const Hypothesis&)>& hidden, const MatcherConfig& config);
 
 /// The motion fitted to all surface pairs of the members and the centres of the full-rank ones.
 RigidFit FitMembers(const std::vector<MemberPair>& members,

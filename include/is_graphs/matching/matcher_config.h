@@ -41,6 +41,22 @@ struct MatcherConfig {
   int sight_viewpoints{12};        // keyframes per plane whose sight lines are checked
   double sight_door_margin{0.15};  // a sight line this far beyond a doorway's half-width is
                                    // through the wall (door_margin is for the walked path)
+  // --- proposals from the first scans (CornerProposals; before a room is closed) ---
+  // Motions mapping corners of the wall planes seen so far onto the BIM's corners, each scored
+  // on every wall-grade plane (SurfaceEvidence, in walls: a plane surface_full_length long
+  // counts 1), less proposal_crossing_penalty per BIM wall the walked path crosses and the
+  // planes it could not have seen (HiddenWalls, x1). Together with the room hypotheses'
+  // motions; UNIQUE when the best explains proposal_min_share of at least proposal_min_walls
+  // walls seen, crosses no wall, and every other motion scores at least
+  // max(proposal_margin, proposal_margin_share x walls seen) less.
+  bool proposals{true};
+  double proposal_corner_reach{0.5};  // m between a plane's end and the line it meets
+  double proposal_min_walls{6.0};
+  double proposal_min_share{0.75};
+  double proposal_margin{2.0};
+  double proposal_margin_share{0.15};
+  double proposal_crossing_penalty{2.0};
+  int proposal_max_candidates{3000};  // more distinct motions: too little seen, not decided
   // --- decision ---
   double ambiguity_margin{0.4};      // hypotheses scoring within this of the best compete
   double cluster_yaw_deg{3.0};       // hypotheses closer than this (and cluster_translation)

@@ -44,8 +44,20 @@ class SurfaceEvidence {
   /// Σ over `planes` of min(1, length / surface_full_length) x Share.
   double Explained(const std::vector<WallSegment>& planes, const Pose2& pose, int storey) const;
 
+  /// An A-surface a plane lies along (facing the same way, within offset_tolerance).
+  struct Along {
+    int id{0};  // A-Graph wall-surface id
+    Eigen::Vector2d normal{Eigen::Vector2d::UnitX()};
+    double d{0.0};  // normal . p on the surface
+    Eigen::Vector2d middle{Eigen::Vector2d::Zero()};
+    double from{0.0}, to{0.0};  // the stretch of the plane along it (m from the plane's a)
+  };
+  /// The A-surfaces of `storey` that `plane` lies along under `pose` (those Share counts).
+  std::vector<Along> AlongSurfaces(const WallSegment& plane, const Pose2& pose, int storey) const;
+
  private:
   struct Surface {
+    int id{0};
     Eigen::Vector2d a, b;
     Eigen::Vector2d normal;  // out of the wall's material
     double d;                // normal . p on the surface

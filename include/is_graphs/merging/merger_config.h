@@ -41,7 +41,10 @@ struct MergerConfig {
   double gate_room{0.6};            // m
   double min_inlier_fraction{0.6};  // of the pairs
   int min_surface_inliers{3};
-  int min_room_inliers{1};       // when a merge starts (later, rooms may turn outlier and go)
+  int min_room_inliers{1};  // when a merge starts (later, rooms may turn outlier and go)
+  // A merge starting from a match without room pairs (wall planes alone, the matcher's
+  // proposals from the first scans) needs this many surface inliers.
+  int min_surface_inliers_without_rooms{6};
   double max_chi2_per_dof{9.0};  // mean whitened squared residual of the inliers
   // What the robot saw lately must lie on the BIM (CheckRecentEvidence): of the wall planes at
   // least recent_min_length long observed in the newest recent_keyframes keyframes, at least

@@ -19,15 +19,21 @@ struct OdometryCalibration {
 };
 
 struct OdometryCalibrationConfig {
-  int window{40};                // the newest keyframe steps used
-  int min_steps{8};              // fewer: no calibration (the identity)
+  int window{40};    // the newest keyframe steps used
+  int min_steps{2};  // fewer: no calibration (the identity)
+  // The identity as a prior, worth this many m² of odometry steps (one perfect 0.7 m step):
+  // the first few steps calibrate in part, as soon as a merge starts (the matcher's proposals
+  // localize after 2-4 keyframes, when 8 steps were not there yet); 30 steps of 0.8 m keep
+  // 97.5 % of the estimate.
+  double prior_weight{0.5};
   double min_step{0.3};          // m of odometry: shorter steps (turns on the spot) are left out
   double max_scale_error{0.15};  // the scale is clamped to 1 +- this
   double max_yaw_per_m{0.02};    // rad/m, clamped
 };
 
-/// Least squares over the newest `window` steps (keyframe and its previous, both with poses):
-/// scale = Σ|d_opt||d_odom| / Σ|d_odom|², yaw_per_m = Σ(θ_opt - θ_odom)|d_odom| / Σ|d_odom|².
+/// Least squares over the newest `window` steps (keyframe and its previous, both with poses),
+/// shrunk to the identity by prior_weight λ: scale = (Σ|d_opt||d_odom| + λ) / (Σ|d_odom|² + λ),
+/// yaw_per_m = Σ(θ_opt - θ_odom)|d_odom| / (Σ|d_odom|² + λ).
 /// `poses` (keyframe id -> map <- base) overrides the S-Graph's own optimized poses (the merged
 /// ones); the odometry steps are the keyframes' odom_pose.
 OdometryCalibration CalibrateOdometry(const sgraph::SGraph& graph,

@@ -43,11 +43,24 @@ std::vector<SDoorwayView> UsableDoorways(const sgraph::SGraph& graph,
   return out;
 }
 
+namespace {
+
+long long CellKey(long long ix, long long iy) { return (ix << 32) ^ (iy & 0xffffffffLL); }
+
+}  // namespace
+
 DoorwayEvidence::DoorwayEvidence(const agraph::AGraph& graph, const MatcherConfig& config)
-    : tolerance_(config.doorway_tolerance), width_tolerance_(config.doorway_width_tolerance) {
+    : tolerance_(config.doorway_tolerance),
+      width_tolerance_(config.doorway_width_tolerance),
+      cell_(std::max(1.0, config.doorway_tolerance)) {
   for (const auto& d : graph.doorways) {
     if (!d.position.allFinite() || !std::isfinite(d.width)) continue;
-    storeys_[d.storey].push_back({d.id, d.position.head<2>(), d.width, d.rooms});
+    Storey& st = storeys_[d.storey];
+    const Eigen::Vector2d at = d.position.head<2>();
+    st.cells[CellKey(static_cast<long long>(std::floor(at.x() / cell_)),
+                     static_cast<long long>(std::floor(at.y() / cell_)))]
+        .push_back(static_cast<int>(st.doors.size()));
+    st.doors.push_back({d.id, at, d.width, d.rooms});
   }
 }
 
@@ -61,11 +74,24 @@ std::vector<MatchPair> DoorwayEvidence::Pairs(const std::vector<SDoorwayView>& d
     int s, a;  // indices
   };
   std::vector<Candidate> candidates;
+  const Storey& st = it->second;
+  std::vector<int> near;
   for (size_t i = 0; i < doorways.size(); ++i) {
     const SDoorwayView& s = doorways[i];
     const Eigen::Vector2d at = pose.Apply(s.at);
-    for (size_t j = 0; j < it->second.size(); ++j) {
-      const Door& a = it->second[j];
+    // The A-doorways in the 3 x 3 cells around it, in index order (deterministic pairing).
+    near.clear();
+    const long long cx = static_cast<long long>(std::floor(at.x() / cell_));
+    const long long cy = static_cast<long long>(std::floor(at.y() / cell_));
+    for (long long ix = cx - 1; ix <= cx + 1; ++ix)
+      for (long long iy = cy - 1; iy <= cy + 1; ++iy) {
+        const auto cell = st.cells.find(CellKey(ix, iy));
+        if (cell != st.cells.end())
+          near.insert(near.end(), cell->second.begin(), cell->second.end());
+      }
+    std::sort(near.begin(), near.end());
+    for (int j : near) {
+      const Door& a = st.doors[j];
       const double distance = (a.at - at).norm();
       if (distance > tolerance_) continue;
       if (s.width > 0.0 && a.width > 0.0 && std::abs(s.width - a.width) > width_tolerance_)
@@ -75,19 +101,19 @@ std::vector<MatchPair> DoorwayEvidence::Pairs(const std::vector<SDoorwayView>& d
         return paired == s_to_a_room.end() ||
                std::count(a.rooms.begin(), a.rooms.end(), paired->second) > 0;
       });
-      if (rooms_agree) candidates.push_back({distance, static_cast<int>(i), static_cast<int>(j)});
+      if (rooms_agree) candidates.push_back({distance, static_cast<int>(i), j});
     }
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& x, const Candidate& y) { return x.distance < y.distance; });
-  std::vector<bool> s_used(doorways.size(), false), a_used(it->second.size(), false);
+  std::vector<bool> s_used(doorways.size(), false), a_used(st.doors.size(), false);
   std::vector<MatchPair> out;
   const double sigma = 0.5 * tolerance_;
   for (const auto& c : candidates) {
     if (s_used[c.s] || a_used[c.a]) continue;
     s_used[c.s] = a_used[c.a] = true;
     const double r = c.distance / sigma;
-    out.push_back({it->second[c.a].id, doorways[c.s].id, std::exp(-0.5 * r * r)});
+    out.push_back({st.doors[c.a].id, doorways[c.s].id, std::exp(-0.5 * r * r)});
   }
   return out;
 }

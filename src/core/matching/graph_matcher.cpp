@@ -44,6 +44,7 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   crossings_ = WallCrossings(graph, config_.door_margin, config_.sight_door_margin);
   surfaces_ = SurfaceEvidence(graph, config_);
   doorways_ = DoorwayEvidence(graph, config_);
+  a_corners_ = FindCorners(FacingSurfaces(graph), config_.proposal_corner_reach);
   a_sha256_ = graph.source.sha256;
   has_agraph_ = true;
   cache_.clear();
@@ -150,15 +151,16 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   stats_.s_rooms = static_cast<int>(s_rooms.size());
   if (a_rooms_.empty()) out.warnings.push_back("no A-Graph rooms with surfaces to match against");
   if (s_rooms.empty()) out.warnings.push_back("no S-Graph rooms with usable planes to match");
-  if (a_rooms_.empty() || s_rooms.empty()) return out;
+  if (a_rooms_.empty()) return out;
 
-  std::vector<Hypothesis> hypotheses = Hypothesize(s_rooms);
+  std::vector<Hypothesis> hypotheses =
+      s_rooms.empty() ? std::vector<Hypothesis>() : Hypothesize(s_rooms);
   // One set of loose wall planes for this S-Graph, the doubter's hypotheses scored on it too.
   Evidence evidence;
   evidence.loose = LooseWalls(graph, s_rooms, hypotheses);
   evidence.path = WalkedPath(graph, config_.max_path_step);
   evidence.doors = UsableDoorways(graph, &out.warnings);
-  if (config_.sight_penalty > 0.0)
+  if (config_.sight_penalty > 0.0 && !s_rooms.empty())
     evidence.seen = SeenFrom(graph, evidence.loose, config_.sight_viewpoints);
   Score(hypotheses, evidence, s_rooms);
   std::vector<Eigen::Vector2d> s_points;
@@ -172,37 +174,38 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     doubt = Doubt(s_rooms, hypotheses[decision.best], s_points, evidence);
     if (doubt) decision.status = MatchStatus::kAmbiguous;
   }
-  out.status = decision.status;
+  // 6. Without a UNIQUE answer from the rooms: the proposals, on every wall plane seen.
+  if (decision.status != MatchStatus::kUnique && config_.proposals) {
+    ProposalDecision proposed = Propose(graph, evidence, hypotheses);
+    stats_.proposals = proposed.candidates;
+    if (proposed.status == MatchStatus::kUnique) {
+      FillFromProposal(proposed, hypotheses, s_rooms, evidence, &out);
+      stats_.milliseconds =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      return out;
+    }
+    // Before any room pair: what the proposals leave open (for inspection only).
+    if (decision.status == MatchStatus::kNone && proposed.status == MatchStatus::kAmbiguous) {
+      out.status = MatchStatus::kAmbiguous;
+      out.hypotheses = static_cast<unsigned>(std::max<size_t>(1, 1 + proposed.competitors.size()));
+      if (proposed.scored) {
+        out.score = proposed.best.score;
+        out.bim_T_map = proposed.best.pose.ToIsometry();
+        for (const auto& c : proposed.competitors)
+          out.alternatives.push_back({c.pose.ToIsometry(), c.score, 0});
+      }
+    }
+  }
+  if (decision.status != MatchStatus::kNone || out.status == MatchStatus::kNone)
+    out.status = decision.status;
   if (decision.best >= 0) {
     const Hypothesis& best = hypotheses[decision.best];
     last_best_ = best.pose;
     out.score = best.score;
     out.hypotheses = static_cast<unsigned>(1 + decision.competitors.size() + (doubt ? 1 : 0));
     out.bim_T_map = best.pose.ToIsometry();
-    // By S-plane id: the best pair's score and A-feature; every piece of the feature is paired
-    // (an S-plane along collinear A-surfaces pairs with each of them).
-    std::map<int, std::pair<double, const PlaneFeature*>> surfaces;
-    for (const auto& m : best.members) {
-      const RoomDescriptor& s = s_rooms[m.s_room];
-      const RoomDescriptor& a = a_rooms_[m.a_room];
-      out.room_pairs.push_back({a.id, s.id, m.evaluation.quality});
-      for (size_t k = 0; k < m.evaluation.surfaces.size(); ++k) {
-        const auto [i, j] = m.evaluation.surfaces[k];
-        const double r = m.evaluation.residuals[k] / config_.quality_sigma;
-        const double score = std::exp(-0.5 * r * r);
-        auto it = surfaces.find(s.planes[i].id);
-        if (it == surfaces.end() || it->second.first < score)
-          surfaces[s.planes[i].id] = {score, &a.planes[j]};
-      }
-    }
-    std::sort(out.room_pairs.begin(), out.room_pairs.end(),
-              [](const MatchPair& x, const MatchPair& y) { return x.s_id < y.s_id; });
-    for (const auto& [s_id, best_pair] : surfaces) {
-      std::vector<int> pieces = best_pair.second->pieces;
-      if (pieces.empty()) pieces = {best_pair.second->id};
-      std::sort(pieces.begin(), pieces.end());
-      for (int a_id : pieces) out.surface_pairs.push_back({a_id, s_id, best_pair.first});
-    }
+    out.room_pairs = RoomPairs(best, s_rooms);
+    out.surface_pairs = SurfacePairs(best, s_rooms);
     out.doorway_pairs =
         doorways_.Pairs(evidence.doors, best.pose, best.storey, PairedRooms(best, s_rooms));
     for (int k : decision.competitors)
@@ -212,6 +215,43 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   }
   stats_.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+std::vector<MatchPair> GraphMatcher::RoomPairs(const Hypothesis& h,
+                                               const std::vector<RoomDescriptor>& s_rooms) const {
+  std::vector<MatchPair> out;
+  for (const auto& m : h.members)
+    out.push_back({a_rooms_[m.a_room].id, s_rooms[m.s_room].id, m.evaluation.quality});
+  std::sort(out.begin(), out.end(),
+            [](const MatchPair& x, const MatchPair& y) { return x.s_id < y.s_id; });
+  return out;
+}
+
+std::vector<MatchPair> GraphMatcher::SurfacePairs(
+    const Hypothesis& h, const std::vector<RoomDescriptor>& s_rooms) const {
+  // By S-plane id: the best pair's score and A-feature; every piece of the feature is paired
+  // (an S-plane along collinear A-surfaces pairs with each of them).
+  std::map<int, std::pair<double, const PlaneFeature*>> surfaces;
+  for (const auto& m : h.members) {
+    const RoomDescriptor& s = s_rooms[m.s_room];
+    const RoomDescriptor& a = a_rooms_[m.a_room];
+    for (size_t k = 0; k < m.evaluation.surfaces.size(); ++k) {
+      const auto [i, j] = m.evaluation.surfaces[k];
+      const double r = m.evaluation.residuals[k] / config_.quality_sigma;
+      const double score = std::exp(-0.5 * r * r);
+      auto it = surfaces.find(s.planes[i].id);
+      if (it == surfaces.end() || it->second.first < score)
+        surfaces[s.planes[i].id] = {score, &a.planes[j]};
+    }
+  }
+  std::vector<MatchPair> out;
+  for (const auto& [s_id, best_pair] : surfaces) {
+    std::vector<int> pieces = best_pair.second->pieces;
+    if (pieces.empty()) pieces = {best_pair.second->id};
+    std::sort(pieces.begin(), pieces.end());
+    for (int a_id : pieces) out.push_back({a_id, s_id, best_pair.first});
+  }
   return out;
 }
 
@@ -230,10 +270,10 @@ std::optional<Hypothesis> GraphMatcher::Doubt(const std::vector<RoomDescriptor>&
     // doubt must have paid for the walls it goes through and the planes it could not have seen
     // before it competes with this best.
     if (d.crossings < 0) {
-      d.crossings = crossings_.Count(evidence.path, d.pose, d.storey);
-      d.score -= config_.wall_crossing_penalty * d.crossings;
-      d.hidden = Hidden(d, evidence);
-      d.score -= d.hidden;
+      Settle(
+          d, [&](const Hypothesis& h) { return DoorsExplained(h, evidence, s_rooms); },
+          [&](const Hypothesis& h) { return crossings_.Count(evidence.path, h.pose, h.storey); },
+          [&](const Hypothesis& h) { return Hidden(h, evidence); }, config_);
       if (d.score < best.score - config_.ambiguity_margin) continue;
     }
     if (!strongest || d.score > strongest->score) strongest = std::move(d);
@@ -332,20 +372,32 @@ void GraphMatcher::Score(std::vector<Hypothesis>& hypotheses, const Evidence& ev
                          const std::vector<RoomDescriptor>& s_rooms) const {
   // 3. Scores: the pairs' affinity, plus the loose wall planes and the walked-through doorways
   // the BIM explains, less the walls the walked path crosses and the loose planes it could not
-  // have seen under each motion.
-  auto explained = [&](const Hypothesis& h) {
-    double e = 0.0;
-    if (!evidence.loose.empty())
-      e += config_.surface_evidence_weight * surfaces_.Explained(evidence.loose, h.pose, h.storey);
-    if (!evidence.doors.empty() && config_.doorway_evidence_weight > 0.0)
-      e += config_.doorway_evidence_weight *
-           doorways_.Explained(evidence.doors, h.pose, h.storey, PairedRooms(h, s_rooms));
-    return e;
-  };
+  // have seen under each motion. The doorways (each pair adds at most doorway_evidence_weight),
+  // the crossings and the sight lines only for the hypotheses that can still matter.
   ScoreHypotheses(
-      hypotheses, explained,
+      hypotheses,
+      [&](const Hypothesis& h) {
+        return evidence.loose.empty() ? 0.0
+                                      : config_.surface_evidence_weight *
+                                            surfaces_.Explained(evidence.loose, h.pose, h.storey);
+      },
+      [&](const Hypothesis& h) { return DoorsExplained(h, evidence, s_rooms); },
+      DoorsBound(evidence),
       [&](const Hypothesis& h) { return crossings_.Count(evidence.path, h.pose, h.storey); },
       [&](const Hypothesis& h) { return Hidden(h, evidence); }, config_);
+}
+
+double GraphMatcher::DoorsExplained(const Hypothesis& h, const Evidence& evidence,
+                                    const std::vector<RoomDescriptor>& s_rooms) const {
+  if (evidence.doors.empty() || config_.doorway_evidence_weight <= 0.0) return 0.0;
+  return config_.doorway_evidence_weight *
+         doorways_.Explained(evidence.doors, h.pose, h.storey, PairedRooms(h, s_rooms));
+}
+
+double GraphMatcher::DoorsBound(const Evidence& evidence) const {
+  return config_.doorway_evidence_weight > 0.0
+             ? config_.doorway_evidence_weight * static_cast<double>(evidence.doors.size())
+             : 0.0;
 }
 
 }  // namespace matching

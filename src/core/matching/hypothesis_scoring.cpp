@@ -15,8 +15,23 @@ double GlobalAffinity(const std::vector<MemberPair>& members, const MatcherConfi
   return score;
 }
 
+void Settle(Hypothesis& h, const std::function<double(const Hypothesis&)>& lazy,
+            const std::function<int(const Hypothesis&)>& crossings,
+            const std::function<double(const Hypothesis&)>& hidden, const MatcherConfig& config) {
+  if (h.crossings >= 0) return;
+  const double exact = h.pending > 0.0 ? lazy(h) : 0.0;
+  h.evidence += exact;
+  h.score += exact - h.pending;
+  h.pending = 0.0;
+  h.crossings = config.wall_crossing_penalty > 0.0 ? crossings(h) : 0;
+  h.score -= config.wall_crossing_penalty * h.crossings;
+  h.hidden = config.sight_penalty > 0.0 ? hidden(h) : 0.0;
+  h.score -= h.hidden;
+}
+
 void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
                      const std::function<double(const Hypothesis&)>& evidence,
+                     const std::function<double(const Hypothesis&)>& lazy, double lazy_bound,
                      const std::function<int(const Hypothesis&)>& crossings,
                      const std::function<double(const Hypothesis&)>& hidden,
                      const MatcherConfig& config) {
@@ -26,7 +41,8 @@ void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
     h.crossings = -1;
     h.hidden = 0.0;
     h.evidence = h.members.empty() ? 0.0 : evidence(h);
-    h.score = h.affinity + h.evidence;
+    h.pending = h.members.empty() ? 0.0 : std::max(0.0, lazy_bound);
+    h.score = h.affinity + h.evidence + h.pending;
     if (!h.members.empty()) order.push_back(static_cast<int>(k));
   }
   std::stable_sort(order.begin(), order.end(),
@@ -34,11 +50,15 @@ void ScoreHypotheses(std::vector<Hypothesis>& hypotheses,
   double best = -std::numeric_limits<double>::infinity();
   for (int k : order) {
     Hypothesis& h = hypotheses[k];
-    if (h.score < best - config.ambiguity_margin) break;  // sorted: no later one can matter
-    h.crossings = config.wall_crossing_penalty > 0.0 ? crossings(h) : 0;
-    h.score -= config.wall_crossing_penalty * h.crossings;
-    h.hidden = config.sight_penalty > 0.0 ? hidden(h) : 0.0;
-    h.score -= h.hidden;
+    if (h.score < best - config.ambiguity_margin) break;  // sorted bounds: no later one matters
+    if (h.pending > 0.0) {  // the lazy evidence first: it may put h out of reach by itself
+      const double exact = lazy(h);
+      h.evidence += exact;
+      h.score += exact - h.pending;
+      h.pending = 0.0;
+      if (h.score < best - config.ambiguity_margin) continue;
+    }
+    Settle(h, lazy, crossings, hidden, config);
     best = std::max(best, h.score);
   }
 }

@@ -57,7 +57,7 @@ SurfaceEvidence::SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfi
     for (int id : on) {
       Storey& storey = storeys_[id];
       const int index = static_cast<int>(storey.surfaces.size());
-      storey.surfaces.push_back({s.start, s.end, unit, unit.dot(0.5 * (s.start + s.end))});
+      storey.surfaces.push_back({s.id, s.start, s.end, unit, unit.dot(0.5 * (s.start + s.end))});
       // Every cell within offset_tolerance of the segment (its bounding box, widened).
       for (long long ix = CellOf(lo.x()); ix <= CellOf(hi.x()); ++ix)
         for (long long iy = CellOf(lo.y()); iy <= CellOf(hi.y()); ++iy)
@@ -66,9 +66,12 @@ SurfaceEvidence::SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfi
   }
 }
 
-double SurfaceEvidence::Share(const WallSegment& plane, const Pose2& pose, int storey) const {
+std::vector<SurfaceEvidence::Along> SurfaceEvidence::AlongSurfaces(const WallSegment& plane,
+                                                                   const Pose2& pose,
+                                                                   int storey) const {
+  std::vector<Along> out;
   const auto found = storeys_.find(storey);
-  if (found == storeys_.end() || plane.length <= 0.0) return 0.0;
+  if (found == storeys_.end() || plane.length <= 0.0) return out;
   const Storey& st = found->second;
   const Eigen::Vector2d a = pose.Apply(plane.a), b = pose.Apply(plane.b);
   const Eigen::Vector2d n = pose.Rotate(plane.normal);
@@ -84,8 +87,6 @@ double SurfaceEvidence::Share(const WallSegment& plane, const Pose2& pose, int s
   }
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  // The stretches of the plane (as distances from a along it) that lie on an A-surface.
-  std::vector<std::pair<double, double>> covered;
   for (int i : candidates) {
     const Surface& s = st.surfaces[i];
     if (s.normal.dot(n) < cos_angle_ || std::abs(s.normal.dot(middle) - s.d) > offset_tolerance_)
@@ -94,8 +95,16 @@ double SurfaceEvidence::Share(const WallSegment& plane, const Pose2& pose, int s
     if (u0 > u1) std::swap(u0, u1);
     u0 = std::max(u0 - kEndSlack, 0.0);
     u1 = std::min(u1 + kEndSlack, plane.length);
-    if (u1 > u0) covered.emplace_back(u0, u1);
+    if (u1 > u0) out.push_back({s.id, s.normal, s.d, 0.5 * (s.a + s.b), u0, u1});
   }
+  return out;
+}
+
+double SurfaceEvidence::Share(const WallSegment& plane, const Pose2& pose, int storey) const {
+  if (plane.length <= 0.0) return 0.0;
+  // The stretches of the plane (as distances from a along it) that lie on an A-surface.
+  std::vector<std::pair<double, double>> covered;
+  for (const Along& s : AlongSurfaces(plane, pose, storey)) covered.emplace_back(s.from, s.to);
   std::sort(covered.begin(), covered.end());
   double total = 0.0, reach = 0.0;
   for (const auto& [u0, u1] : covered) {

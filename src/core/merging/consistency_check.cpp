@@ -48,8 +48,11 @@ ConsistencyReport CheckConsistency(const MergeSolution& solution, const MergerCo
     why = "the solve failed (" + solution.message + ")";
   else if (report.surface_inliers < config.min_surface_inliers)
     why = "too few surface inliers";
-  else if (starting && report.room_inliers < config.min_room_inliers)
+  else if (starting && report.room_pairs > 0 && report.room_inliers < config.min_room_inliers)
     why = "too few room inliers";
+  else if (starting && report.room_pairs == 0 &&
+           report.surface_inliers < config.min_surface_inliers_without_rooms)
+    why = "too few surface inliers for a match without rooms";
   else if (report.inlier_fraction < config.min_inlier_fraction)
     why = "too many outlier pairs";
   else if (report.chi2_per_dof > config.max_chi2_per_dof)

@@ -61,14 +61,27 @@ void Merger::Reset() {
 }
 
 double Merger::HeightOfMap(const sgraph::SGraph& s_graph, double fallback) const {
-  // M's height in B: the storey's floor elevation minus the S-Graph floor's height in M.
-  if (s_graph.floors.empty() || pairs_.rooms.empty()) return fallback;
-  const int a_room = pairs_.rooms.begin()->second;
-  if (a_room < 0 || a_room >= static_cast<int>(a_graph_.rooms.size())) return fallback;
-  const int storey = a_graph_.rooms[a_room].storey;
+  // M's height in B: the storey's floor elevation minus the S-Graph floor's height in M. The
+  // storey of the first room pair, else (a match from wall planes alone) of the first surface.
+  if (s_graph.floors.empty()) return fallback;
+  int storey = -1;
+  double room_floor = 0.0;
+  if (!pairs_.rooms.empty()) {
+    const int a_room = pairs_.rooms.begin()->second;
+    if (a_room < 0 || a_room >= static_cast<int>(a_graph_.rooms.size())) return fallback;
+    storey = a_graph_.rooms[a_room].storey;
+    room_floor = a_graph_.rooms[a_room].z_min;
+  } else if (!pairs_.surfaces.empty() && !pairs_.surfaces.begin()->second.empty()) {
+    const int a_surface = pairs_.surfaces.begin()->second.front();
+    if (a_surface < 0 || a_surface >= static_cast<int>(a_graph_.surfaces.size())) return fallback;
+    storey = a_graph_.surfaces[a_surface].storey;
+    room_floor = a_graph_.surfaces[a_surface].z_min;
+  } else {
+    return fallback;
+  }
   const double elevation = storey >= 0 && storey < static_cast<int>(a_graph_.storeys.size())
                                ? a_graph_.storeys[storey].elevation
-                               : a_graph_.rooms[a_room].z_min;
+                               : room_floor;
   return elevation - s_graph.floors.front().height;
 }
 

@@ -46,6 +46,9 @@ std::string MergerConfig::Validate() const {
     return "min_surface_inliers must be >= 0, got " + std::to_string(min_surface_inliers);
   if (min_room_inliers < 0)
     return "min_room_inliers must be >= 0, got " + std::to_string(min_room_inliers);
+  if (min_surface_inliers_without_rooms < 0)
+    return "min_surface_inliers_without_rooms must be >= 0, got " +
+           std::to_string(min_surface_inliers_without_rooms);
   if (max_iterations < 1)
     return "max_iterations must be >= 1, got " + std::to_string(max_iterations);
   if (window_keyframes < 0)

@@ -43,8 +43,10 @@ OdometryCalibration CalibrateOdometry(const sgraph::SGraph& graph,
     yaw += steps[i].dyaw * steps[i].odom;
     ++out.steps;
   }
-  out.scale = std::clamp(dot / sq, 1.0 - config.max_scale_error, 1.0 + config.max_scale_error);
-  out.yaw_per_m = std::clamp(yaw / sq, -config.max_yaw_per_m, config.max_yaw_per_m);
+  const double prior = std::max(0.0, config.prior_weight);
+  out.scale = std::clamp((dot + prior) / (sq + prior), 1.0 - config.max_scale_error,
+                         1.0 + config.max_scale_error);
+  out.yaw_per_m = std::clamp(yaw / (sq + prior), -config.max_yaw_per_m, config.max_yaw_per_m);
   return out;
 }
 

@@ -4,7 +4,13 @@
 // seeds. Prints a Markdown table: median and p90 of a cold match (fresh matcher), of a warm
 // re-match (the next revision, nothing changed: incremental reuse) and the share UNIQUE.
 //
-//   bench_matching [--reps N] [--no-doubt]   (--no-doubt: doubt_centre_tolerance 0, no re-check)
+// The S-Graphs carry the walk through their rooms (keyframes), the doorways found on it and the
+// keyframes that observed each plane, as the harsh campaign's do: every kind of evidence.
+//
+//   bench_matching [--reps N] [--no-doubt] [--no-proposals] [--rooms-only] [--cell A S]
+//   (--no-doubt: doubt_centre_tolerance 0, no re-check; --no-proposals: no corner proposals;
+//    --rooms-only: S-Graphs of rooms and planes alone, no walk, doorways or observations;
+//    --cell A S: only the cell of A A-Graph rooms and S S-Graph rooms)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -71,6 +77,11 @@ agraph::AGraph GridBuilding(int cols, int rows, std::uint64_t seed) {
         agraph::Doorway d;
         d.id = static_cast<int>(g.doorways.size());
         d.rooms = {room_id(i, j), room_id(i + di, j + dj)};
+        // In the middle of the wall the two rooms share, 0.9 m wide.
+        d.position = di ? Eigen::Vector3d(xs[i + 1], 0.5 * (ys[j] + ys[j + 1]), 0.0)
+                        : Eigen::Vector3d(0.5 * (xs[i] + xs[i + 1]), ys[j + 1], 0.0);
+        d.width = 0.9;
+        d.height = 2.0;
         for (int r : d.rooms) g.rooms[r].doorways.push_back(d.id);
         g.doorways.push_back(d);
       }
@@ -88,25 +99,38 @@ double Percentile(std::vector<double> v, double p) {
 int main(int argc, char** argv) {
   using namespace is_graphs;
   int reps = 30;
+  bool walk = true;
+  int only_a = 0, only_s = 0;  // --cell A S: that cell alone (for profiling)
   matching::MatcherConfig config;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
       reps = std::max(1, std::atoi(argv[++i]));
     else if (std::strcmp(argv[i], "--no-doubt") == 0)
       config.doubt_centre_tolerance = 0.0;
+    else if (std::strcmp(argv[i], "--no-proposals") == 0)
+      config.proposals = false;
+    else if (std::strcmp(argv[i], "--rooms-only") == 0)
+      walk = false;
+    else if (std::strcmp(argv[i], "--cell") == 0 && i + 2 < argc)
+      only_a = std::atoi(argv[i + 1]), only_s = std::atoi(argv[i + 2]), i += 2;
     else
-      return std::fprintf(stderr, "usage: bench_matching [--reps N] [--no-doubt]\n"), 2;
+      return std::fprintf(stderr,
+                          "usage: bench_matching [--reps N] [--no-doubt] [--no-proposals] "
+                          "[--rooms-only] [--cell A S]\n"),
+             2;
   }
   const struct { int cols, rows; } buildings[] = {{5, 2}, {10, 6}, {20, 10}};
   std::printf(
       "| A-Graph rooms | S-Graph rooms | cold median ms | cold p90 ms | warm median ms | "
-      "candidates | seeds | UNIQUE |\n|---|---|---|---|---|---|---|---|\n");
+      "candidates | seeds | proposals | S-doorways | UNIQUE "
+      "|\n|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& b : buildings) {
     const agraph::AGraph g = GridBuilding(b.cols, b.rows, 1000 + b.cols);
     for (int s_rooms : {3, 10, 20}) {
       if (s_rooms > static_cast<int>(g.rooms.size())) continue;
+      if (only_a > 0 && (only_a != static_cast<int>(g.rooms.size()) || only_s != s_rooms)) continue;
       std::vector<double> cold, warm;
-      double candidates = 0, seeds = 0;
+      double candidates = 0, seeds = 0, proposals = 0, doors = 0;
       int unique = 0;
       std::mt19937_64 rng(77 + s_rooms);
       for (int r = 0; r < reps; ++r) {
@@ -118,6 +142,11 @@ int main(int argc, char** argv) {
         c.centre_noise = 0.1;
         c.bim_deviation = 0.05;
         c.seed = rng();
+        // The walk through the rooms' doorways, the doorways found on it and the keyframes
+        // that saw each plane: every kind of evidence the matcher weighs.
+        c.walk = walk;
+        c.doorways = walk;
+        c.observations = walk;
         matching::SyntheticSGraph s = matching::MakeSyntheticSGraph(g, c);
         matching::GraphMatcher matcher(config);
         matcher.SetAGraph(g);
@@ -125,14 +154,17 @@ int main(int argc, char** argv) {
         cold.push_back(matcher.LastStats().milliseconds);
         candidates += matcher.LastStats().candidates;
         seeds += matcher.LastStats().seeds;
+        proposals += matcher.LastStats().proposals;
+        doors += static_cast<double>(s.graph.doorways.size());
         unique += m.status == matching::MatchStatus::kUnique;
         s.graph.revision += 1;
         matcher.Match(s.graph);
         warm.push_back(matcher.LastStats().milliseconds);
       }
-      std::printf("| %zu | %d | %.2f | %.2f | %.2f | %.0f | %.0f | %d/%d |\n", g.rooms.size(),
-                  s_rooms, Percentile(cold, 0.5), Percentile(cold, 0.9), Percentile(warm, 0.5),
-                  candidates / reps, seeds / reps, unique, reps);
+      std::printf("| %zu | %d | %.2f | %.2f | %.2f | %.0f | %.0f | %.0f | %.1f | %d/%d |\n",
+                  g.rooms.size(), s_rooms, Percentile(cold, 0.5), Percentile(cold, 0.9),
+                  Percentile(warm, 0.5), candidates / reps, seeds / reps, proposals / reps,
+                  doors / reps, unique, reps);
       std::fflush(stdout);
     }
   }
