@@ -96,6 +96,65 @@ TEST(CornerProposals, CornerPairsProposeTheMotion) {
   EXPECT_TRUE(ProposeMotions(FindCorners(outside, 0.5), bim, 8.0).empty());
 }
 
+/// The S-Graph of `c` before any room is closed: its planes, keyframes, observations, no rooms.
+SyntheticSGraph WithoutRooms(const agraph::AGraph& g, const SyntheticSGraphConfig& c);
+
+// Before any room: the walls of the office's hall and the rooms seen through its doorways decide
+// by themselves; planes with NaNs, a plane of zero length and doorways of rooms that do not
+// exist are left out (warnings), the answer the same as without them.
+TEST(CornerProposals, WallsAloneLocalizeAndBadPlanesAreLeftOut) {
+  IS_GRAPHS_BUILDING_OR_SKIP(g, testing::ProjectBim("rotated.ifc"));
+  int hall = 0;
+  for (const auto& r : g->rooms)
+    if (r.doorways.size() > g->rooms[hall].doorways.size()) hall = r.id;
+  SyntheticSGraphConfig c;
+  c.rooms = {hall};
+  c.bim_T_map = geometry::IsometryFromXYYaw(4.0, -9.0, 2.1);
+  c.normal_noise_deg = 0.5;
+  c.offset_noise = 0.02;
+  c.walk = true;
+  c.observations = true;
+  for (int d : g->rooms[hall].doorways)
+    for (int r : g->doorways[d].rooms)
+      if (r != hall) c.seen_rooms.push_back(r);
+  c.seed = 11;
+  SyntheticSGraph s = WithoutRooms(*g, c);
+  ASSERT_TRUE(s.graph.rooms.empty());
+  GraphMatcher matcher;
+  matcher.SetAGraph(*g);
+  const GraphMatch clean = matcher.Match(s.graph);
+  std::string why;
+  ASSERT_EQ(clean.status, MatchStatus::kUnique) << clean.hypotheses << " hypotheses";
+  EXPECT_TRUE(testing::MatchIsCorrect(clean, s, &why)) << why;
+  EXPECT_TRUE(clean.room_pairs.empty());
+  EXPECT_GE(clean.surface_pairs.size(), 6u);
+  // Bad input added.
+  sgraph::Plane nan_plane = s.graph.planes.front();
+  nan_plane.id = 9001;
+  nan_plane.start.x() = std::nan("");
+  sgraph::Plane zero = s.graph.planes.front();
+  zero.id = 9002;
+  zero.end = zero.start;
+  s.graph.planes.push_back(nan_plane);
+  s.graph.planes.push_back(zero);
+  sgraph::Doorway door;
+  door.id = 77;
+  door.position = Eigen::Vector3d(1.0, 2.0, 0.0);
+  door.rooms = {5, 6};
+  s.graph.doorways.push_back(door);
+  matcher.ForgetHistory();
+  const GraphMatch bad = matcher.Match(s.graph);
+  EXPECT_EQ(bad.status, MatchStatus::kUnique);
+  EXPECT_TRUE(bad.bim_T_map.isApprox(clean.bim_T_map, 1e-12));
+  EXPECT_FALSE(bad.warnings.empty());
+  // With the proposals off, the same walls without rooms give no answer.
+  MatcherConfig rooms_only;
+  rooms_only.proposals = false;
+  GraphMatcher without(rooms_only);
+  without.SetAGraph(*g);
+  EXPECT_EQ(without.Match(s.graph).status, MatchStatus::kNone);
+}
+
 std::uint64_t ProposalSeed() {
   const char* env = std::getenv("IS_GRAPHS_SEED");
   return env && *env ? std::strtoull(env, nullptr, 10) : 20261125ull;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <set>
 #include <string>
 
 #include "is_graphs/agraph/agraph.h"
@@ -19,6 +20,10 @@ Result<int> FindStorey(const AGraph& graph, const std::string& storey);
 Result<AGraph> SelectStorey(const AGraph& graph, int storey_index);
 /// As above, the storey given by name or numeric index (see FindStorey).
 Result<AGraph> SelectStorey(const AGraph& graph, const std::string& storey);
+
+/// The storeys a wall-surface stands on: its own and those of the rooms it bounds (a wall
+/// modelled on one storey may stand up through the next). Room ids out of range are skipped.
+std::set<int> StoreysOfSurface(const AGraph& graph, const WallSurface& surface);
 
 /// Area of a simple polygon (positive when counter-clockwise).
 double SignedArea(const std::vector<Eigen::Vector2d>& polygon);

@@ -7,6 +7,13 @@
 namespace is_graphs {
 namespace agraph {
 
+std::set<int> StoreysOfSurface(const AGraph& graph, const WallSurface& surface) {
+  std::set<int> on{surface.storey};
+  for (int r : surface.rooms)
+    if (r >= 0 && r < static_cast<int>(graph.rooms.size())) on.insert(graph.rooms[r].storey);
+  return on;
+}
+
 double SignedArea(const std::vector<Eigen::Vector2d>& polygon) {
   double twice_area = 0.0;
   for (size_t i = 0; i < polygon.size(); ++i) {

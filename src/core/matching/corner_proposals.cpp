@@ -6,6 +6,7 @@
 #include <set>
 #include <tuple>
 
+#include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/geometry/se3.h"
 
 namespace is_graphs {
@@ -67,10 +68,8 @@ std::vector<FacingSegment> FacingSurfaces(const agraph::AGraph& graph) {
     if (!s.start.allFinite() || !s.end.allFinite() || !n.allFinite() || n.norm() < 0.5 ||
         s.Length() < 1e-3)
       continue;
-    std::set<int> on{s.storey};
-    for (int r : s.rooms)
-      if (r >= 0 && r < static_cast<int>(graph.rooms.size())) on.insert(graph.rooms[r].storey);
-    for (int storey : on) out.push_back({s.start, s.end, n.normalized(), storey});
+    for (int storey : agraph::StoreysOfSurface(graph, s))
+      out.push_back({s.start, s.end, n.normalized(), storey});
   }
   return out;
 }

@@ -5,6 +5,8 @@
 #include <set>
 #include <utility>
 
+#include "is_graphs/agraph/agraph_queries.h"
+
 namespace is_graphs {
 namespace matching {
 namespace {
@@ -47,9 +49,7 @@ SurfaceEvidence::SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfi
       continue;
     // On its own storey and on those of the rooms it bounds (a wall modelled on one storey
     // may stand up through the next).
-    std::set<int> on{s.storey};
-    for (int r : s.rooms)
-      if (r >= 0 && r < static_cast<int>(graph.rooms.size())) on.insert(graph.rooms[r].storey);
+    const std::set<int> on = agraph::StoreysOfSurface(graph, s);
     const Eigen::Vector2d unit = n.normalized();
     const double pad = offset_tolerance_ + kEndSlack;
     const Eigen::Vector2d lo = s.start.cwiseMin(s.end).array() - pad;
