@@ -49,16 +49,16 @@ struct MatchStats {
 ///     loose planes it could only have seen through an interior BIM wall (HiddenWalls);
 ///  4. decision: hypotheses implying the same motion merged, the best score cluster
 ///     (ambiguity_margin) must hold exactly one for UNIQUE (see Decide);
-///  6. proposals (when 1-5 give no UNIQUE answer, e.g. before any room is closed): motions
-///     mapping corners of the seen wall planes onto the BIM's corners, with the hypotheses'
-///     motions, scored on every wall plane seen, the walked path and the sight lines (Propose);
-///     one clearly best gives UNIQUE with its surface pairs (and its room pairs where a
-///     hypothesis of the same motion has them).
 ///  5. doubt: a UNIQUE answer is re-checked by a second matcher whose room-centre gate is
 ///     doubt_centre_tolerance: where clutter moved the true room's centre out of the strict
 ///     gate, the truth is missing from the hypotheses and a lone wrong one would stand; a
 ///     hypothesis of another motion it finds within the margin makes the answer AMBIGUOUS
 ///     (scored on the same loose planes: its own pairs would leave others loose).
+///  6. proposals (when 1-5 give no UNIQUE answer, e.g. before any room is closed): motions
+///     mapping corners of the seen wall planes onto the BIM's corners, with the hypotheses'
+///     motions, scored on every wall plane seen, the walked path and the sight lines (Propose);
+///     one clearly best gives UNIQUE with its surface pairs (and its room pairs where a
+///     hypothesis of the same motion has them).
 /// Incremental: an S-room unchanged since the last call keeps its candidates, and the last best
 /// motion is grown first. Not thread-safe; one matcher per thread.
 class GraphMatcher {

@@ -150,7 +150,10 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   const std::vector<RoomDescriptor> s_rooms = DescribeSRooms(graph);
   stats_.s_rooms = static_cast<int>(s_rooms.size());
   if (a_rooms_.empty()) out.warnings.push_back("no A-Graph rooms with surfaces to match against");
-  if (s_rooms.empty()) out.warnings.push_back("no S-Graph rooms with usable planes to match");
+  // No S-room yet is the normal start (the proposals work on the wall planes); S-rooms none of
+  // which is usable are not.
+  if (s_rooms.empty() && !graph.rooms.empty())
+    out.warnings.push_back("no S-Graph rooms with usable planes to match");
   if (a_rooms_.empty()) return out;
 
   std::vector<Hypothesis> hypotheses =
