@@ -14,7 +14,7 @@ def yaw_of(quaternions_wxyz):
 def ape(ref_full, est, max_diff=0.03):
     """APE of `est` against the ground truth `ref_full` (evo PoseTrajectory3D), NOT aligned: each
     estimate is paired with the truth of the same stamp (evo's association, within max_diff s).
-    Returns the numbers (3-D RMSE/max by evo, x-y and yaw RMSE/max) and, under "_series", the
+    Returns the numbers (3-D RMSE/max by evo, x-y, z and yaw RMSE/max) and, under "_series", the
     stamps and per-pose errors (x-y [m], yaw [deg]) with the associated trajectories."""
     from evo.core import metrics, sync
 
@@ -23,12 +23,14 @@ def ape(ref_full, est, max_diff=0.03):
     metric.process_data((ref, est_sync))
     stats = metric.get_all_statistics()
     err_xy = np.linalg.norm(ref.positions_xyz[:, :2] - est_sync.positions_xyz[:, :2], axis=1)
+    err_z = np.abs(ref.positions_xyz[:, 2] - est_sync.positions_xyz[:, 2])
     dyaw = yaw_of(est_sync.orientations_quat_wxyz) - yaw_of(ref.orientations_quat_wxyz)
     dyaw = np.degrees(np.abs(np.arctan2(np.sin(dyaw), np.cos(dyaw))))
     return {
         "poses_evaluated": int(ref.num_poses),
         "ape_rmse_m": float(stats["rmse"]), "ape_max_m": float(stats["max"]),
         "ape_xy_rmse_m": float(np.sqrt(np.mean(err_xy ** 2))), "ape_xy_max_m": float(err_xy.max()),
+        "ape_z_rmse_m": float(np.sqrt(np.mean(err_z ** 2))), "ape_z_max_m": float(err_z.max()),
         "yaw_rmse_deg": float(np.sqrt(np.mean(dyaw ** 2))), "yaw_max_deg": float(dyaw.max()),
         "_series": (est_sync.timestamps, err_xy, dyaw, ref, est_sync),
     }

@@ -14,6 +14,12 @@ def _xy_yaw(numbers):
             f"{numbers['yaw_rmse_deg']:.2f} / {numbers['yaw_max_deg']:.2f}")
 
 
+def _z(numbers):
+    if not numbers or "ape_z_rmse_m" not in numbers:
+        return DASH
+    return f"{numbers['ape_z_rmse_m']:.3f} / {numbers['ape_z_max_m']:.3f}"
+
+
 def _rmse(numbers):
     if not numbers:
         return DASH
@@ -43,9 +49,10 @@ def table_one(results):
 
 def details(results):
     lines = ["| dataset | localized | first UNIQUE [s] | walked to first UNIQUE [m] | first pose "
-             "in B | UNIQUE matches / wrong | x-y APE RMSE / max [m] | yaw RMSE / max [°] | map "
-             "cloud RMSE / median [m] (points used) | replay [s] (RTF, peak MiB) |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "in B | UNIQUE matches / wrong | x-y APE RMSE / max [m] | z APE RMSE / max [m] | "
+             "yaw RMSE / max [°] | map cloud RMSE / median [m] (points used) | replay [s] (RTF, "
+             "peak MiB) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, r in results.items():
         loc = "yes" if r["localized"] else "**no**"
         if r["localized"] and not r["localized_at_end"]:
@@ -60,7 +67,8 @@ def details(results):
                  f"{c['points']})" if c else DASH)
         run = f"{r['replay_seconds']:.0f} ({r['real_time_factor']:.0f}×, {r['peak_rss_mib']:.0f})"
         lines.append(f"| {name} | {loc} | {first} | {pose} | {r['unique_matches']} / "
-                     f"{r['wrong_matches']} | {xy} | {yaw} | {cloud} | {run} |")
+                     f"{r['wrong_matches']} | {xy} | {_z(r.get('isgraphs'))} | {yaw} | {cloud} | "
+                 f"{run} |")
     return lines
 
 

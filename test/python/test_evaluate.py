@@ -73,7 +73,25 @@ def test_ape_is_not_aligned():
     assert numbers["poses_evaluated"] == len(stamps[250::5])
     assert numbers["ape_xy_rmse_m"] == pytest.approx(0.05, abs=1e-9)
     assert numbers["ape_xy_max_m"] == pytest.approx(0.05, abs=1e-9)
+    assert numbers["ape_z_rmse_m"] == pytest.approx(0.0, abs=1e-9)
     assert numbers["yaw_rmse_deg"] == pytest.approx(0.5, abs=1e-6)
+
+
+def test_ape_reports_the_height_apart():
+    # The pose 0.25 m too high for the second half (a wrong storey elevation, a floor missing
+    # from the BIM): x-y untouched, z RMSE sqrt(1/2) x 0.25, max 0.25.
+    stamps = np.arange(0.0, 20.0, 0.02)
+    truth = traj(stamps, walk(stamps))
+    poses = []
+    for t, p in zip(stamps, walk(stamps)):
+        p = p.copy()
+        if t >= 10.0:
+            p[2, 3] += 0.25
+        poses.append(p)
+    numbers = evaluation_common.ape(truth, traj(stamps, poses))
+    assert numbers["ape_xy_rmse_m"] == pytest.approx(0.0, abs=1e-9)
+    assert numbers["ape_z_max_m"] == pytest.approx(0.25, abs=1e-9)
+    assert numbers["ape_z_rmse_m"] == pytest.approx(0.25 * math.sqrt(0.5), abs=0.01)
 
 
 def fake_replay(prefix, localized=True):
