@@ -131,7 +131,9 @@ TEST_F(MatcherNodeTest, UniqueAmbiguousAndMalformedSGraphs) {
   EXPECT_EQ(lone->status, is_graphs::GraphMatch::AMBIGUOUS);
   EXPECT_GE(lone->hypotheses, 2u);
 
-  // 3. Malformed S-Graphs: no crash, no UNIQUE.
+  // 3. Malformed S-Graphs: no crash. Planes with NaN offsets and an empty graph: no UNIQUE.
+  // Rooms without planes or with NaN centres are left out, the wall planes still match (the
+  // corner proposals): if UNIQUE, then at the true motion and without room pairs.
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<sgraph::SGraph> bad(4, whole.graph);
   for (auto& p : bad[0].planes) p.plane.d = nan;
@@ -141,7 +143,15 @@ TEST_F(MatcherNodeTest, UniqueAmbiguousAndMalformedSGraphs) {
   for (size_t k = 0; k < bad.size(); ++k) {
     const auto m = Publish(bad[k], 10 + static_cast<unsigned>(k));
     ASSERT_TRUE(m) << "no graph_match for malformed S-Graph " << k << " (node down?)";
-    EXPECT_NE(m->status, is_graphs::GraphMatch::UNIQUE) << "malformed S-Graph " << k;
+    if (k == 0 || k == 3) {
+      EXPECT_NE(m->status, is_graphs::GraphMatch::UNIQUE) << "malformed S-Graph " << k;
+    } else if (m->status == is_graphs::GraphMatch::UNIQUE) {
+      EXPECT_TRUE(m->room_pairs.empty()) << "malformed S-Graph " << k;
+      const matching::GraphMatch c = ros_conversions::FromMsg(*m);
+      EXPECT_NEAR(geometry::NormalizeAngle(geometry::Yaw(c.bim_T_map) - 2.2), 0.0, 0.02) << k;
+      EXPECT_LT((c.bim_T_map.translation().head<2>() - Eigen::Vector2d(-8.0, 15.0)).norm(), 0.3)
+          << "malformed S-Graph " << k;
+    }
   }
 
   // 4. Still alive and matching.

@@ -16,8 +16,8 @@ namespace matching {
 /// surfaces or naming a surface that does not exist.
 std::vector<std::string> CheckAGraph(const agraph::AGraph& graph);
 
-/// No rooms; duplicate plane or room ids; non-finite planes or centres; a room with no planes
-/// or naming a plane that does not exist.
+/// Neither rooms nor planes; duplicate plane or room ids; non-finite planes or centres; a room with
+/// no planes or naming a plane that does not exist.
 std::vector<std::string> CheckSGraph(const sgraph::SGraph& graph);
 
 }  // namespace matching

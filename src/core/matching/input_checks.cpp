@@ -41,7 +41,10 @@ std::vector<std::string> CheckAGraph(const agraph::AGraph& graph) {
 std::vector<std::string> CheckSGraph(const sgraph::SGraph& graph) {
   std::vector<std::string> out;
   const std::string rev = "S-Graph rev " + std::to_string(graph.revision);
-  if (graph.rooms.empty()) out.push_back(rev + ": no rooms");
+  // Without rooms the wall planes still match (the corner proposals): only a graph with
+  // neither has nothing to match.
+  if (graph.rooms.empty() && graph.planes.empty())
+    out.push_back(rev + ": no rooms and no planes: nothing to match");
   std::set<int> plane_ids;
   for (const auto& p : graph.planes) {
     if (!plane_ids.insert(p.id).second)

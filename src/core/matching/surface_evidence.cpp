@@ -24,8 +24,8 @@ std::vector<WallSegment> WallSegments(const sgraph::SGraph& graph, const Matcher
   std::vector<WallSegment> out;
   std::set<int> ids;
   for (const auto& p : graph.planes) {
-    if (!p.plane.normal.allFinite() || !p.start.allFinite() || !p.end.allFinite() ||
-        !std::isfinite(p.z_min) || !std::isfinite(p.z_max))
+    if (!p.plane.normal.allFinite() || !std::isfinite(p.plane.d) || !p.start.allFinite() ||
+        !p.end.allFinite() || !std::isfinite(p.z_min) || !std::isfinite(p.z_max))
       continue;
     const Eigen::Vector2d n = p.plane.normal.head<2>();
     if (n.norm() < 0.95) continue;  // more than ~18 deg from vertical
