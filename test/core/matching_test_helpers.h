@@ -1,4 +1,6 @@
 #pragma once
+
+#include <cstdlib>
 // Helpers of the matcher tests: the project's buildings through the real converter (cached),
 // and what "a correct match" means.
 
@@ -132,6 +134,12 @@ inline bool MatchIsCorrect(const matching::GraphMatch& m, const matching::Synthe
   }
   if (why) *why = out.str();
   return ok;
+}
+
+/// A randomized campaign's seed: IS_GRAPHS_SEED when set, else `fallback`.
+inline std::uint64_t CampaignSeed(std::uint64_t fallback) {
+  const char* env = std::getenv("IS_GRAPHS_SEED");
+  return env && *env ? std::strtoull(env, nullptr, 10) : fallback;
 }
 
 /// The tally of a randomized matching campaign, overall and per building.

@@ -17,16 +17,11 @@ namespace is_graphs {
 namespace matching {
 namespace {
 
-std::uint64_t CampaignSeed() {
-  const char* env = std::getenv("IS_GRAPHS_SEED");
-  return env && *env ? std::strtoull(env, nullptr, 10) : 20240505ull;
-}
-
 TEST(MatchingCampaign, ThousandRandomTrialsWithoutAWrongUniqueMatch) {
   const auto buildings = testing::CampaignBuildings();
   if (buildings.empty()) GTEST_SKIP() << "no building could be loaded (converter missing?)";
 
-  const std::uint64_t seed = CampaignSeed();
+  const std::uint64_t seed = testing::CampaignSeed(20240505ull);
   std::cout << "[ campaign ] seed " << seed << " (set IS_GRAPHS_SEED to change)" << std::endl;
   RecordProperty("seed", std::to_string(seed));
   std::mt19937_64 rng(seed);

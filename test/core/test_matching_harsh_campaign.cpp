@@ -23,11 +23,6 @@ namespace is_graphs {
 namespace matching {
 namespace {
 
-std::uint64_t HarshSeed() {
-  const char* env = std::getenv("IS_GRAPHS_SEED");
-  return env && *env ? std::strtoull(env, nullptr, 10) : 20261124ull;
-}
-
 SyntheticSGraphConfig HarshTrial(const agraph::AGraph& g, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   auto count = [&](double p, int max) {
@@ -90,7 +85,7 @@ SyntheticSGraph ReplayTrial(
 TEST(MatchingHarshCampaign, ThousandHarshTrialsWithoutAWrongUniqueMatch) {
   const auto buildings = testing::CampaignBuildings();
   if (buildings.empty()) GTEST_SKIP() << "no building could be loaded (converter missing?)";
-  const std::uint64_t seed = HarshSeed();
+  const std::uint64_t seed = testing::CampaignSeed(20261124ull);
   std::cout << "[ harsh ] seed " << seed << " (set IS_GRAPHS_SEED to change)" << std::endl;
   RecordProperty("seed", std::to_string(seed));
   std::mt19937_64 rng(seed);

@@ -155,11 +155,6 @@ TEST(CornerProposals, WallsAloneLocalizeAndBadPlanesAreLeftOut) {
   EXPECT_EQ(without.Match(s.graph).status, MatchStatus::kNone);
 }
 
-std::uint64_t ProposalSeed() {
-  const char* env = std::getenv("IS_GRAPHS_SEED");
-  return env && *env ? std::strtoull(env, nullptr, 10) : 20261125ull;
-}
-
 /// The S-Graph of `c` before any room is closed: its planes, keyframes, observations, no rooms.
 SyntheticSGraph WithoutRooms(const agraph::AGraph& g, const SyntheticSGraphConfig& c) {
   SyntheticSGraph s = MakeSyntheticSGraph(g, c);
@@ -175,7 +170,7 @@ SyntheticSGraph WithoutRooms(const agraph::AGraph& g, const SyntheticSGraphConfi
 TEST(CornerProposals, ThousandRoomlessTrialsWithoutAWrongUniqueMatch) {
   const auto buildings = testing::CampaignBuildings();
   if (buildings.empty()) GTEST_SKIP() << "no building could be loaded (converter missing?)";
-  const std::uint64_t seed = ProposalSeed();
+  const std::uint64_t seed = testing::CampaignSeed(20261125ull);
   std::cout << "[ roomless ] seed " << seed << " (set IS_GRAPHS_SEED to change)" << std::endl;
   RecordProperty("seed", std::to_string(seed));
   std::mt19937_64 rng(seed);
