@@ -25,6 +25,30 @@ std::vector<matching::MatchPair> PairsFromMsg(const std::vector<is_graphs::Match
   return out;
 }
 
+std::vector<is_graphs::SurfaceDeviation> DeviationsToMsg(
+    const std::vector<matching::SurfaceDeviation>& deviations) {
+  std::vector<is_graphs::SurfaceDeviation> out;
+  for (const auto& d : deviations) {
+    is_graphs::SurfaceDeviation m;
+    m.a_id = static_cast<uint32_t>(d.a_id);
+    m.s_id = static_cast<uint32_t>(d.s_id);
+    m.offset = d.offset;
+    m.angle = d.angle;
+    m.paired = d.paired;
+    out.push_back(m);
+  }
+  return out;
+}
+
+std::vector<matching::SurfaceDeviation> DeviationsFromMsg(
+    const std::vector<is_graphs::SurfaceDeviation>& deviations) {
+  std::vector<matching::SurfaceDeviation> out;
+  for (const auto& m : deviations)
+    out.push_back({static_cast<int>(m.a_id), static_cast<int>(m.s_id), m.offset, m.angle,
+                   static_cast<bool>(m.paired)});
+  return out;
+}
+
 }  // namespace
 
 is_graphs::GraphMatch ToMsg(const matching::GraphMatch& match) {
@@ -35,6 +59,7 @@ is_graphs::GraphMatch ToMsg(const matching::GraphMatch& match) {
   msg.room_pairs = PairsToMsg(match.room_pairs);
   msg.surface_pairs = PairsToMsg(match.surface_pairs);
   msg.doorway_pairs = PairsToMsg(match.doorway_pairs);
+  msg.deviations = DeviationsToMsg(match.deviations);
   msg.score = match.score;
   msg.hypotheses = match.hypotheses;
   msg.bim_T_map = ToPose(match.bim_T_map);
@@ -59,6 +84,7 @@ matching::GraphMatch FromMsg(const is_graphs::GraphMatch& msg) {
   match.room_pairs = PairsFromMsg(msg.room_pairs);
   match.surface_pairs = PairsFromMsg(msg.surface_pairs);
   match.doorway_pairs = PairsFromMsg(msg.doorway_pairs);
+  match.deviations = DeviationsFromMsg(msg.deviations);
   match.score = msg.score;
   match.hypotheses = msg.hypotheses;
   match.bim_T_map = FromPose(msg.bim_T_map);

@@ -83,6 +83,23 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
     doorways.points.push_back(ToPoint(s_point));
   }
 
+  // Walls off the plan: from the A-surface's middle to the S-plane where it was built, in the
+  // BIM frame itself (not lifted), magenta.
+  auto deviations = Make(style, "deviations", visualization_msgs::Marker::LINE_LIST,
+                         Rgba(0.9f, 0.1f, 0.9f), 3.0 * style.line_width);
+  for (const auto& d : match.deviations) {
+    const auto s = s_planes.find(d.s_id);
+    if (d.a_id < 0 || d.a_id >= static_cast<int>(a_graph.surfaces.size()) || s == s_planes.end())
+      continue;
+    const auto& a = a_graph.surfaces[d.a_id];
+    const Eigen::Vector2d mid = 0.5 * (a.start + a.end);
+    const Eigen::Vector3d a_point(mid.x(), mid.y(), 0.5 * (a.z_min + a.z_max));
+    const Eigen::Vector3d s_point = s->second->plane.Transformed(t).Project(a_point);
+    if (!s_point.allFinite() || !a_point.allFinite()) continue;
+    deviations.points.push_back(ToPoint(a_point));
+    deviations.points.push_back(ToPoint(s_point));
+  }
+
   auto text = Make(style, "status", visualization_msgs::Marker::TEXT_VIEW_FACING, colour, 0.8);
   Eigen::Vector3d text_at = Eigen::Vector3d::Zero();
   for (const auto& r : a_graph.rooms)
@@ -91,7 +108,7 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
   text.text = std::string(matching::ToString(match.status)) + " (" +
               std::to_string(match.hypotheses) + " hypotheses, S-Graph rev " +
               std::to_string(match.s_graph_revision) + ")";
-  for (auto* m : {&rooms, &centres, &surfaces, &doorways})
+  for (auto* m : {&rooms, &centres, &surfaces, &doorways, &deviations})
     if (!m->points.empty()) array.markers.push_back(*m);
   array.markers.push_back(text);
   return array;

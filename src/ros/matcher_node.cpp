@@ -68,6 +68,10 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "min_matched_rooms", c.min_matched_rooms);
   ros_params::Read(pnh, "min_matched_fraction", c.min_matched_fraction);
   ros_params::Read(pnh, "max_seeds", c.max_seeds);
+  ros_params::Read(pnh, "deviation_offset", c.deviation_offset);
+  ros_params::Read(pnh, "deviation_angle_deg", c.deviation_angle_deg);
+  ros_params::Read(pnh, "deviation_max_offset", c.deviation_max_offset);
+  ros_params::Read(pnh, "deviation_max_angle_deg", c.deviation_max_angle_deg);
   ros_params::Read(pnh, "frame_id", p.markers.frame_id);
   ros_params::Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
   if (p.markers.frame_id.empty())

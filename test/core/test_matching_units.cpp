@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <random>
 
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/candidate_graph.h"
@@ -114,6 +116,53 @@ TEST(PairwiseConsistency, RoomPairsKeepDistanceAndTurn) {
   RoomCorrespondence corridor{
       {6, 2}, motion.Apply({9, 2}), motion.yaw, true, motion.Rotate({1, 0})};
   EXPECT_GT(RoomPairConsistency(a, corridor, config), 0.9);
+}
+
+// The matcher asks only whether two pairs agree (SurfacePairsAgree, RoomPairsAgree: no exp, no
+// atan2); that must be exactly whether their consistency weight is above 0, on any input.
+TEST(PairwiseConsistency, AgreeIsWhetherTheWeightIsPositive) {
+  const std::uint64_t seed = 20261125;
+  std::printf("seed %llu\n", static_cast<unsigned long long>(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), coord(-6.0, 6.0), jitter(-0.4, 0.4);
+  auto unit = [](double a) { return Eigen::Vector2d(std::cos(a), std::sin(a)); };
+  MatcherConfig config;
+  int agree_s = 0, agree_r = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    // Surface pairs: the A side a moved copy of the S side, then disturbed (some far, most near
+    // the tolerances, where a shortcut would differ).
+    const Pose2 motion{angle(rng), {coord(rng), coord(rng)}};
+    const double a1 = angle(rng), a2 = angle(rng);
+    const PointNormal s1{{coord(rng), coord(rng)}, unit(a1)},
+        s2{{coord(rng), coord(rng)}, unit(a2)};
+    const double scale = trial % 3 == 0 ? 1.0 : 0.3;
+    const PointNormal t1{motion.Apply(s1.point), unit(a1 + motion.yaw + scale * jitter(rng))};
+    const PointNormal t2{motion.Apply(s2.point) + scale * Eigen::Vector2d(jitter(rng), jitter(rng)),
+                         unit(a2 + motion.yaw + scale * jitter(rng))};
+    const double tol_angle = 0.28, tol_distance = 0.5;
+    const bool agree = SurfacePairsAgree(s1, s2, t1, t2, tol_angle, tol_distance);
+    ASSERT_EQ(agree, SurfacePairConsistency(s1, s2, t1, t2, tol_angle, tol_distance) > 0.0)
+        << "surface trial " << trial;
+    agree_s += agree;
+    // Room pairs likewise.
+    RoomCorrespondence i{
+        {coord(rng), coord(rng)}, {}, motion.yaw, trial % 5 == 0, unit(angle(rng))};
+    i.a_centre = motion.Apply(i.s_centre);
+    RoomCorrespondence j{{coord(rng), coord(rng)},
+                         {},
+                         motion.yaw + scale * jitter(rng),
+                         trial % 7 == 0,
+                         unit(angle(rng))};
+    j.a_centre = motion.Apply(j.s_centre) + 4.0 * scale * Eigen::Vector2d(jitter(rng), jitter(rng));
+    const bool agree_rooms = RoomPairsAgree(i, j, config);
+    ASSERT_EQ(agree_rooms, RoomPairConsistency(i, j, config) > 0.0) << "room trial " << trial;
+    agree_r += agree_rooms;
+  }
+  // Both answers occur often (the test is not one-sided).
+  EXPECT_GT(agree_s, 20000);
+  EXPECT_LT(agree_s, 180000);
+  EXPECT_GT(agree_r, 20000);
+  EXPECT_LT(agree_r, 180000);
 }
 
 TEST(PairwiseConsistency, SurfacePairsAreSigned) {

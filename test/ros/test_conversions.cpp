@@ -3,6 +3,7 @@
 
 #include "../../src/ros/agraph_conversions.h"
 #include "../../src/ros/cloud_conversions.h"
+#include "../../src/ros/graph_match_conversions.h"
 #include "../../src/ros/sgraph_conversions.h"
 #include "is_graphs/agraph/agraph_io.h"
 
@@ -147,6 +148,32 @@ TEST(SGraphConversions, RoundTripKeepsEveryField) {
   EXPECT_EQ(b.doorways[0].rooms, std::vector<int>{2});
   EXPECT_EQ(b.doorways[0].planes, std::vector<int>{4});
   EXPECT_EQ(b.doorways[0].keyframes, std::vector<int>{11});
+}
+
+TEST(GraphMatchConversions, RoundTripKeepsPairsAndDeviations) {
+  matching::GraphMatch a;
+  a.status = matching::MatchStatus::kUnique;
+  a.a_graph_sha256 = "abc";
+  a.s_graph_revision = 7;
+  a.room_pairs = {{1, 3, 0.9}};
+  a.surface_pairs = {{4, 8, 0.8}, {5, 8, 0.8}};
+  a.doorway_pairs = {{2, 1, 1.0}};
+  a.deviations = {{4, 11, 0.31, -0.02, true}, {9, 14, -0.12, 0.2, false}};
+  a.score = 2.5;
+  a.hypotheses = 1;
+  const matching::GraphMatch b = ros_conversions::FromMsg(ros_conversions::ToMsg(a));
+  EXPECT_EQ(b.status, a.status);
+  EXPECT_EQ(b.s_graph_revision, 7u);
+  ASSERT_EQ(b.surface_pairs.size(), 2u);
+  ASSERT_EQ(b.doorway_pairs.size(), 1u);
+  ASSERT_EQ(b.deviations.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(b.deviations[i].a_id, a.deviations[i].a_id);
+    EXPECT_EQ(b.deviations[i].s_id, a.deviations[i].s_id);
+    EXPECT_DOUBLE_EQ(b.deviations[i].offset, a.deviations[i].offset);
+    EXPECT_DOUBLE_EQ(b.deviations[i].angle, a.deviations[i].angle);
+    EXPECT_EQ(b.deviations[i].paired, a.deviations[i].paired);
+  }
 }
 
 TEST(CloudConversions, RoundTripDropsNothingFinite) {

@@ -21,6 +21,18 @@ struct MatchPair {
   double score{0.0};  // quality of the pair in [0, 1]
 };
 
+/// A wall-surface of a paired room that the S-Graph sees off the plan: the S-plane of the
+/// paired S-room facing the way the A-surface does stands `offset` from it or is turned by
+/// `angle`.
+struct SurfaceDeviation {
+  int a_id{0};         // A-Graph wall-surface
+  int s_id{0};         // S-Graph plane
+  double offset{0.0};  // m along the A-surface's normal (+: into the room it bounds), at the
+                       // point of the plane nearest the A-room's centre
+  double angle{0.0};   // rad, the S-plane's turn from the A-surface about z (+: anticlockwise)
+  bool paired{false};  // within the pair tolerances (also in surface_pairs); else only here
+};
+
 /// A global hypothesis, as reported for the competitors of the best one.
 struct HypothesisSummary {
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};
@@ -41,6 +53,9 @@ struct GraphMatch {
   // A-doorway id, S-doorway id: the S-Graph's walked-through doorways at the BIM's
   // (DoorwayEvidence).
   std::vector<MatchPair> doorway_pairs;
+  // Wall-surfaces of the paired rooms built off the plan (MatcherConfig deviation_*), one per
+  // A-surface piece, by S-plane then A-surface id.
+  std::vector<SurfaceDeviation> deviations;
   double score{0.0};       // global affinity of the best hypothesis
   unsigned hypotheses{0};  // hypotheses in the best score cluster (1 when UNIQUE)
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // rotation about z + translation

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -89,8 +90,11 @@ class GraphMatcher {
     std::vector<RoomCandidate> candidates;
   };
 
-  /// Steps 1-2 of Match: candidates (cached), hypotheses grown from seeds.
-  std::vector<Hypothesis> Hypothesize(const std::vector<RoomDescriptor>& s_rooms);
+  /// Steps 1-2 of Match: candidates (cached), hypotheses grown from seeds. A hypothesis whose
+  /// affinity cannot reach `affinity_floor` is given up while it grows (left without members).
+  std::vector<Hypothesis> Hypothesize(
+      const std::vector<RoomDescriptor>& s_rooms,
+      double affinity_floor = -std::numeric_limits<double>::infinity());
   /// The wall planes weighed as evidence (SurfaceEvidence): those of no S-room and of S-rooms
   /// none of `hypotheses` pairs.
   std::vector<WallSegment> LooseWalls(const sgraph::SGraph& graph,
@@ -144,13 +148,17 @@ class GraphMatcher {
                                    const std::vector<RoomDescriptor>& s_rooms) const;
   std::vector<MatchPair> SurfacePairs(const Hypothesis& h,
                                       const std::vector<RoomDescriptor>& s_rooms) const;
+  /// The wall-surfaces of the rooms `h` pairs that their S-planes show off the plan.
+  std::vector<SurfaceDeviation> Deviations(const Hypothesis& h,
+                                           const std::vector<RoomDescriptor>& s_rooms) const;
   /// `pose` refitted to the planes of `walls` and the A-surfaces they lie along under it.
   Pose2 Refine(const std::vector<WallSegment>& walls, const Pose2& pose, int storey) const;
 
   Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,
                   const std::vector<RoomDescriptor>& s_rooms,
                   const std::vector<std::vector<RoomCandidate>>& candidates,
-                  const CandidateIndex& index) const;
+                  const CandidateIndex& index, const std::vector<int>& order, double affinity_floor,
+                  bool* abandoned) const;
 
   MatcherConfig config_;
   bool has_agraph_{false};

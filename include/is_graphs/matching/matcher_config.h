@@ -68,6 +68,16 @@ struct MatcherConfig {
   // for a wall): a hypothesis found only so, of another motion and within ambiguity_margin,
   // makes it AMBIGUOUS. <= centre_tolerance: no doubt.
   double doubt_centre_tolerance{1.2};
+  // --- walls off the plan (GraphMatch::deviations) ---
+  // A paired room's wall-surface whose S-plane stands more than deviation_offset or turned more
+  // than deviation_angle_deg from it is marked deviating (its pair keeps only its share of the
+  // room's quality); so is an S-plane of a paired room that found no A-surface within the pair
+  // tolerances but one of that room facing the same way within deviation_max_offset and
+  // deviation_max_angle_deg (a wall built 35 cm or 15 deg off).
+  double deviation_offset{0.1};
+  double deviation_angle_deg{3.0};
+  double deviation_max_offset{0.6};
+  double deviation_max_angle_deg{20.0};
 
   /// "" when valid, else what is wrong, naming the field.
   std::string Validate() const;

@@ -25,6 +25,11 @@ struct PointNormal {
 double SurfacePairConsistency(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
                               const PointNormal& a2, double angle_tolerance_rad,
                               double distance_tolerance);
+/// SurfacePairConsistency(...) > 0, without the weight's exp (and without the angle where the
+/// distances already disagree).
+bool SurfacePairsAgree(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
+                       const PointNormal& a2, double angle_tolerance_rad,
+                       double distance_tolerance);
 
 /// A room-level correspondence for the pairwise test: its centres and the yaw its local fit
 /// implies; `axis_free` when the centre is known only across `axis_b` (corridors).
@@ -42,6 +47,9 @@ struct RoomCorrespondence {
 /// tolerance grows with the distance by `config.lever_arm_slack`.
 double RoomPairConsistency(const RoomCorrespondence& i, const RoomCorrespondence& j,
                            const MatcherConfig& config);
+/// RoomPairConsistency(...) > 0, without the weights' exp.
+bool RoomPairsAgree(const RoomCorrespondence& i, const RoomCorrespondence& j,
+                    const MatcherConfig& config);
 
 }  // namespace matching
 }  // namespace is_graphs

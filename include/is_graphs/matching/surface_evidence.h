@@ -43,6 +43,8 @@ class SurfaceEvidence {
   double Share(const WallSegment& plane, const Pose2& pose, int storey) const;
   /// Σ over `planes` of min(1, length / surface_full_length) x Share.
   double Explained(const std::vector<WallSegment>& planes, const Pose2& pose, int storey) const;
+  /// The most Explained can give `planes` under any motion: Σ min(1, length / full length).
+  double Bound(const std::vector<WallSegment>& planes) const;
 
   /// An A-surface a plane lies along (facing the same way, within offset_tolerance).
   struct Along {

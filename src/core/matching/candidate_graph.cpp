@@ -30,10 +30,9 @@ void PruneInconsistent(const RoomDescriptor& s, const RoomDescriptor& a, double 
   std::vector<char> conflict(n * n, 0);
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j)
-      conflict[i * n + j] = conflict[j * n + i] =
-          SurfacePairConsistency(Foot(s, pairs[i].first), Foot(s, pairs[j].first),
-                                 Foot(a, pairs[i].second), Foot(a, pairs[j].second), angle_tol,
-                                 distance_tol) == 0.0;
+      conflict[i * n + j] = conflict[j * n + i] = !SurfacePairsAgree(
+          Foot(s, pairs[i].first), Foot(s, pairs[j].first), Foot(a, pairs[i].second),
+          Foot(a, pairs[j].second), angle_tol, distance_tol);
   std::vector<int> alive(n);  // indices into the original pairs, in order
   for (size_t i = 0; i < n; ++i) alive[i] = static_cast<int>(i);
   while (alive.size() >= 2) {

@@ -28,6 +28,28 @@ bool Unchanged(const RoomDescriptor& a, const RoomDescriptor& b) {
   return true;
 }
 
+/// The S-rooms by distance from `anchor` (stable: ties keep their index order), the order in
+/// which they are offered to a hypothesis grown from there.
+std::vector<int> GrowthOrder(const std::vector<RoomDescriptor>& s_rooms,
+                             const Eigen::Vector2d& anchor) {
+  std::vector<std::pair<double, int>> by_distance;
+  by_distance.reserve(s_rooms.size());
+  for (size_t i = 0; i < s_rooms.size(); ++i)
+    by_distance.emplace_back((s_rooms[i].centre - anchor).norm(), static_cast<int>(i));
+  std::stable_sort(by_distance.begin(), by_distance.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<int> order;
+  order.reserve(by_distance.size());
+  for (const auto& [distance, i] : by_distance) order.push_back(i);
+  return order;
+}
+
+Eigen::Vector2d MeanCentre(const std::vector<RoomDescriptor>& s_rooms) {
+  Eigen::Vector2d anchor = Eigen::Vector2d::Zero();
+  for (const auto& s : s_rooms) anchor += s.centre / static_cast<double>(s_rooms.size());
+  return anchor;
+}
+
 }  // namespace
 
 GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {
@@ -56,18 +78,26 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
 Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
                               const std::vector<RoomDescriptor>& s_rooms,
                               const std::vector<std::vector<RoomCandidate>>& candidates,
-                              const CandidateIndex& index) const {
+                              const CandidateIndex& index, const std::vector<int>& order,
+                              double affinity_floor, bool* abandoned) const {
   Hypothesis h;
+  *abandoned = false;
+  // What the affinity could still reach: every S-room not yet turned away at its largest weight
+  // (a pair's quality is at most 1).
+  auto cap = [&](const RoomDescriptor& s) {
+    return s.kind == RoomKind::kRoom ? std::max(1.0, config_.corridor_weight)
+                                     : config_.corridor_weight;
+  };
+  double reachable = 0.0;
+  for (const auto& s : s_rooms) reachable += cap(s);
   h.pose = start;
   std::vector<bool> a_taken(a_rooms_.size(), false);
-  Eigen::Vector2d anchor = Eigen::Vector2d::Zero();
-  for (const auto& s : s_rooms) anchor += s.centre / static_cast<double>(s_rooms.size());
+  Eigen::Vector2d anchor = seed ? s_rooms[seed->s_room].centre : MeanCentre(s_rooms);
   RoomCorrespondence seed_corr;
   int storey = -1;  // the storey of the first pair; the others must be on it
   if (seed) {
     const auto& s = s_rooms[seed->s_room];
     const auto& a = a_rooms_[seed->a_room];
-    anchor = s.centre;
     seed_corr = ToCorrespondence(*seed, s, a);
     PairEvaluation eval =
         EvaluatePair(s, a, h.pose, seed->full_rank, EvaluationTolerances::From(config_));
@@ -76,11 +106,6 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
     a_taken[seed->a_room] = seed->full_rank;
     storey = a.storey;
   }
-  std::vector<int> order(s_rooms.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-    return (s_rooms[x].centre - anchor).norm() < (s_rooms[y].centre - anchor).norm();
-  });
   const double yaw_tol = config_.yaw_tolerance_deg * kDegToRad;
   const Eigen::Matrix2d seed_turn = Pose2{seed_corr.yaw, Eigen::Vector2d::Zero()}.R();
   std::vector<int> near;  // the candidates of an S-room that can be consistent with the seed
@@ -104,13 +129,19 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
       if (c.full_rank && a_taken[c.a_room]) continue;
       const RoomDescriptor& a = a_rooms_[c.a_room];
       if (storey >= 0 && a.storey != storey) continue;
-      if (seed && RoomPairConsistency(seed_corr, ToCorrespondence(c, s, a), config_) == 0.0)
-        continue;
+      if (seed && !RoomPairsAgree(seed_corr, ToCorrespondence(c, s, a), config_)) continue;
       PairEvaluation eval = EvaluatePair(s, a, h.pose, c.full_rank, tol);
       if (eval.ok && (!best || eval.quality > best_eval.quality))
         best = &c, best_eval = std::move(eval);
     }
-    if (!best) continue;
+    if (!best) {
+      reachable -= cap(s);
+      if (reachable < affinity_floor) {  // it cannot matter: given up (its pairs so far kept)
+        *abandoned = true;
+        return h;
+      }
+      continue;
+    }
     h.members.push_back({si, best->a_room, best->full_rank, std::move(best_eval)});
     if (best->full_rank) a_taken[best->a_room] = true;
     if (storey < 0) storey = a_rooms_[best->a_room].storey;
@@ -209,6 +240,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     out.bim_T_map = best.pose.ToIsometry();
     out.room_pairs = RoomPairs(best, s_rooms);
     out.surface_pairs = SurfacePairs(best, s_rooms);
+    out.deviations = Deviations(best, s_rooms);
     out.doorway_pairs =
         doorways_.Pairs(evidence.doors, best.pose, best.storey, PairedRooms(best, s_rooms));
     for (int k : decision.competitors)
@@ -263,7 +295,12 @@ std::optional<Hypothesis> GraphMatcher::Doubt(const std::vector<RoomDescriptor>&
                                               const std::vector<Eigen::Vector2d>& s_points,
                                               const Evidence& evidence) {
   doubter_->stats_ = MatchStats{};  // its own bound on seeds, per call
-  std::vector<Hypothesis> doubts = doubter_->Hypothesize(s_rooms);
+  // Only a doubt within the margin of `best` counts: one whose affinity cannot reach that less
+  // all the evidence it could gain is given up while it grows.
+  const double evidence_bound =
+      config_.surface_evidence_weight * surfaces_.Bound(evidence.loose) + DoorsBound(evidence);
+  std::vector<Hypothesis> doubts =
+      doubter_->Hypothesize(s_rooms, best.score - config_.ambiguity_margin - evidence_bound - 1e-9);
   doubter_->Score(doubts, evidence, s_rooms);
   std::optional<Hypothesis> strongest;
   for (auto& d : doubts) {
@@ -284,7 +321,8 @@ std::optional<Hypothesis> GraphMatcher::Doubt(const std::vector<RoomDescriptor>&
   return strongest;
 }
 
-std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescriptor>& s_rooms) {
+std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescriptor>& s_rooms,
+                                                  double affinity_floor) {
   // 1. Local candidates, reused for S-rooms that did not change.
   std::map<int, CachedRoom> cache;
   std::vector<std::vector<RoomCandidate>> candidates(s_rooms.size());
@@ -315,12 +353,18 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
   const CandidateIndex index(candidates, a_rooms_);
   // The hypotheses holding each room pair (s_room * |A| + a_room), to find covered seeds.
   std::vector<std::vector<int>> holding(s_rooms.size() * a_rooms_.size());
+  // A hypothesis given up (below affinity_floor) still covers the pairs it had, then has none.
+  bool abandoned = false;
   auto add = [&](Hypothesis h) {
     for (const auto& m : h.members)
       holding[m.s_room * a_rooms_.size() + m.a_room].push_back(static_cast<int>(hypotheses.size()));
+    if (abandoned) h.members.clear();
     hypotheses.push_back(std::move(h));
   };
-  if (last_best_) add(Grow(*last_best_, nullptr, s_rooms, candidates, index));
+  if (last_best_)
+    add(Grow(*last_best_, nullptr, s_rooms, candidates, index,
+             GrowthOrder(s_rooms, MeanCentre(s_rooms)), affinity_floor, &abandoned));
+  std::vector<std::vector<int>> orders(s_rooms.size());  // from each S-room, made once
   for (const RoomCandidate* seed : seeds) {
     if (stats_.seeds >= config_.max_seeds) break;
     const auto& holders = holding[seed->s_room * a_rooms_.size() + seed->a_room];
@@ -330,7 +374,9 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
     });
     if (covered) continue;
     ++stats_.seeds;
-    add(Grow(seed->pose, seed, s_rooms, candidates, index));
+    std::vector<int>& order = orders[seed->s_room];
+    if (order.empty()) order = GrowthOrder(s_rooms, s_rooms[seed->s_room].centre);
+    add(Grow(seed->pose, seed, s_rooms, candidates, index, order, affinity_floor, &abandoned));
   }
 
   return hypotheses;

@@ -131,6 +131,7 @@ void GraphMatcher::FillFromProposal(const ProposalDecision& proposed,
   if (rooms) {
     out->room_pairs = RoomPairs(*rooms, s_rooms);
     for (const MatchPair& p : SurfacePairs(*rooms, s_rooms)) out->surface_pairs.push_back(p);
+    out->deviations = Deviations(*rooms, s_rooms);
   }
   std::set<int> paired;
   for (const MatchPair& p : out->surface_pairs) paired.insert(p.s_id);

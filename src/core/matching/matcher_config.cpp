@@ -60,6 +60,10 @@ std::string MatcherConfig::Validate() const {
       {"min_matched_rooms", static_cast<double>(min_matched_rooms), 1.0, 1e6, false},
       {"min_matched_fraction", min_matched_fraction, 0.0, 1.0, false},
       {"max_seeds", static_cast<double>(max_seeds), 1.0, 1e9, false},
+      {"deviation_offset", deviation_offset, 0.0, 5.0, true},
+      {"deviation_angle_deg", deviation_angle_deg, 0.0, 45.0, true},
+      {"deviation_max_offset", deviation_max_offset, 0.0, 5.0, true},
+      {"deviation_max_angle_deg", deviation_max_angle_deg, 0.0, 45.0, true},
   };
   for (const auto& f : fields) {
     const std::string error = Check(f.name, f.value, f.lo, f.hi, f.lo_open);

@@ -19,24 +19,30 @@ double Gaussian(double error, double tolerance) {
   return std::exp(-0.5 * error * error / (sigma * sigma));
 }
 
-}  // namespace
-
-double SurfacePairConsistency(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
-                              const PointNormal& a2, double angle_tolerance_rad,
-                              double distance_tolerance) {
+/// The two errors SurfacePairConsistency weighs: the signed turn's and the distance's.
+double SurfaceDistanceError(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
+                            const PointNormal& a2) {
+  return (s1.point - s2.point).norm() - (a1.point - a2.point).norm();
+}
+double SurfaceAngleError(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
+                         const PointNormal& a2) {
   // The S turn less the A turn, in one atan2: the angle of turn_s · conj(turn_a).
   const Eigen::Vector2d ts = Turn(s1.normal, s2.normal), ta = Turn(a1.normal, a2.normal);
-  const double angle_error =
-      std::abs(std::atan2(ts.y() * ta.x() - ts.x() * ta.y(), ts.x() * ta.x() + ts.y() * ta.y()));
-  const double distance_error = (s1.point - s2.point).norm() - (a1.point - a2.point).norm();
-  return Gaussian(angle_error, angle_tolerance_rad) * Gaussian(distance_error, distance_tolerance);
+  return std::abs(std::atan2(ts.y() * ta.x() - ts.x() * ta.y(), ts.x() * ta.x() + ts.y() * ta.y()));
 }
 
-double RoomPairConsistency(const RoomCorrespondence& i, const RoomCorrespondence& j,
-                           const MatcherConfig& config) {
-  const double yaw_error = AngleDistance(i.yaw, j.yaw);
-  const double yaw_weight = Gaussian(yaw_error, config.yaw_tolerance_deg * kDegToRad);
-  if (yaw_weight == 0.0) return 0.0;
+/// The yaw error and the centre displacement error RoomPairConsistency weighs, and the latter's
+/// tolerance.
+struct RoomErrors {
+  double yaw{0.0};
+  double centre{0.0};
+  double centre_tolerance{0.0};
+};
+RoomErrors RoomPairErrors(const RoomCorrespondence& i, const RoomCorrespondence& j,
+                          const MatcherConfig& config, bool with_centre) {
+  RoomErrors out;
+  out.yaw = AngleDistance(i.yaw, j.yaw);
+  if (!with_centre) return out;
   const Eigen::Vector2d ds = Pose2{i.yaw, Eigen::Vector2d::Zero()}.Rotate(j.s_centre - i.s_centre);
   const Eigen::Vector2d da = j.a_centre - i.a_centre;
   Eigen::Vector2d error = ds - da;
@@ -44,8 +50,49 @@ double RoomPairConsistency(const RoomCorrespondence& i, const RoomCorrespondence
   for (const RoomCorrespondence* c : {&i, &j}) {
     if (c->axis_free) error -= c->axis_b * c->axis_b.dot(error);
   }
-  const double tolerance = 2.0 * config.centre_tolerance + config.lever_arm_slack * da.norm();
-  return yaw_weight * Gaussian(error.norm(), tolerance);
+  out.centre = error.norm();
+  out.centre_tolerance = 2.0 * config.centre_tolerance + config.lever_arm_slack * da.norm();
+  return out;
+}
+
+bool Within(double error, double tolerance) { return std::abs(error) <= tolerance; }
+
+}  // namespace
+
+double SurfacePairConsistency(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
+                              const PointNormal& a2, double angle_tolerance_rad,
+                              double distance_tolerance) {
+  return Gaussian(SurfaceAngleError(s1, s2, a1, a2), angle_tolerance_rad) *
+         Gaussian(SurfaceDistanceError(s1, s2, a1, a2), distance_tolerance);
+}
+
+bool SurfacePairsAgree(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
+                       const PointNormal& a2, double angle_tolerance_rad,
+                       double distance_tolerance) {
+  if (!Within(SurfaceDistanceError(s1, s2, a1, a2), distance_tolerance)) return false;
+  if (!(angle_tolerance_rad < M_PI)) return true;
+  // The angle between the two turns within the tolerance, as a cosine (no atan2): their dot
+  // product against cos(tolerance) times their lengths.
+  const Eigen::Vector2d ts = Turn(s1.normal, s2.normal), ta = Turn(a1.normal, a2.normal);
+  return ts.dot(ta) >=
+         std::cos(angle_tolerance_rad) * std::sqrt(ts.squaredNorm() * ta.squaredNorm());
+}
+
+double RoomPairConsistency(const RoomCorrespondence& i, const RoomCorrespondence& j,
+                           const MatcherConfig& config) {
+  const double yaw_tolerance = config.yaw_tolerance_deg * kDegToRad;
+  RoomErrors e = RoomPairErrors(i, j, config, false);
+  const double yaw_weight = Gaussian(e.yaw, yaw_tolerance);
+  if (yaw_weight == 0.0) return 0.0;
+  e = RoomPairErrors(i, j, config, true);
+  return yaw_weight * Gaussian(e.centre, e.centre_tolerance);
+}
+
+bool RoomPairsAgree(const RoomCorrespondence& i, const RoomCorrespondence& j,
+                    const MatcherConfig& config) {
+  const RoomErrors e = RoomPairErrors(i, j, config, true);
+  return Within(e.yaw, config.yaw_tolerance_deg * kDegToRad) &&
+         Within(e.centre, e.centre_tolerance);
 }
 
 }  // namespace matching

@@ -1,6 +1,5 @@
 #include "is_graphs/matching/rigid_fit.h"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "is_graphs/geometry/se3.h"
@@ -11,6 +10,20 @@ namespace {
 
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
+}
+
+/// The eigenvalues of a symmetric 2×2, ascending, in closed form (Eigen's direct solver also
+/// made the eigenvectors, which only the rank-deficient branches need: a tenth of a match).
+Eigen::Vector2d Eigenvalues(const Eigen::Matrix2d& m) {
+  const double mean = 0.5 * (m(0, 0) + m(1, 1)), half_diff = 0.5 * (m(0, 0) - m(1, 1));
+  const double radius = std::sqrt(half_diff * half_diff + m(0, 1) * m(0, 1));
+  return {mean - radius, mean + radius};
+}
+
+/// The unit eigenvector of a symmetric 2×2's larger eigenvalue.
+Eigen::Vector2d MajorAxis(const Eigen::Matrix2d& m) {
+  const double angle = 0.5 * std::atan2(2.0 * m(0, 1), m(0, 0) - m(1, 1));
+  return {std::cos(angle), std::sin(angle)};
 }
 
 }  // namespace
@@ -75,16 +88,14 @@ RigidFit FitYawTranslation(const std::vector<PlaneCorrespondence>& planes,
     a += wo * n * n.transpose();
     b += wo * n * y;
   }
-  // computeDirect: the closed form of a 2×2 (the iterative solver was a tenth of a match).
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> plane_only;
-  plane_only.computeDirect(a);
+  const Eigen::Vector2d plane_only = Eigenvalues(a);
   fit.planes_determine_translation =
-      planes.size() >= 2 && plane_only.eigenvalues()(0) > 0.05 * wo;  // normals >~ 13° apart
+      planes.size() >= 2 && plane_only(0) > 0.05 * wo;  // normals >~ 13° apart
   if (!fit.planes_determine_translation && a.trace() > 0.0) {
     // Nearly parallel planes: keep only the direction they fix (the other, ill-conditioned by
     // the noise between their normals, is left to the points).
-    const Eigen::Vector2d v = plane_only.eigenvectors().col(1);
-    a = plane_only.eigenvalues()(1) * v * v.transpose();
+    const Eigen::Vector2d v = MajorAxis(a);
+    a = plane_only(1) * v * v.transpose();
     b = v * v.dot(b);
   }
   for (const auto& p : points) {
@@ -92,15 +103,14 @@ RigidFit FitYawTranslation(const std::vector<PlaneCorrespondence>& planes,
     a += w * Eigen::Matrix2d::Identity();
     b += w * (p.a_point - r * p.s_point);
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
-  eig.computeDirect(a);
-  fit.translation_determined = eig.eigenvalues()(0) > 1e-9;
+  const Eigen::Vector2d eigenvalues = Eigenvalues(a);
+  fit.translation_determined = eigenvalues(0) > 1e-9;
   if (fit.translation_determined) {
     fit.pose.t = a.ldlt().solve(b);
   } else if (a.trace() > 0.0) {
     // Rank one (parallel planes, no point): the minimum-norm solution along the known direction.
-    const Eigen::Vector2d dir = eig.eigenvectors().col(1);
-    fit.pose.t = dir * (dir.dot(b) / eig.eigenvalues()(1));
+    const Eigen::Vector2d dir = MajorAxis(a);
+    fit.pose.t = dir * (dir.dot(b) / eigenvalues(1));
   }
   fit.t_information = a;
   return fit;

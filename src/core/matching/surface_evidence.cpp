@@ -123,5 +123,11 @@ double SurfaceEvidence::Explained(const std::vector<WallSegment>& planes, const 
   return sum;
 }
 
+double SurfaceEvidence::Bound(const std::vector<WallSegment>& planes) const {
+  double sum = 0.0;
+  for (const WallSegment& p : planes) sum += std::min(1.0, p.length / full_length_);
+  return sum;
+}
+
 }  // namespace matching
 }  // namespace is_graphs
