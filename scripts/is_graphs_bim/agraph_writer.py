@@ -65,10 +65,11 @@ def build(result, mesh_name):
             "center": _v([c[0], c[1], 0.5 * (r.z_min + r.z_max)]), "area": _r(r.area),
             "surfaces": sids, "walls": sorted({surfaces[s]["wall"] for s in sids}),
             "doorways": sorted(r.doorways)})
-    doorways = [{"id": di, "ifc_id": d.entity.id(), "guid": _guid(d.entity),
-                 "name": d.entity.Name or "", "storey": d.storey, "wall": d.wall,
+    doorways = [{"id": di, "ifc_id": _id(d.entity), "guid": _guid(d.entity),
+                 "name": (getattr(d.entity, "Name", None) or "") if d.entity is not None else "",
+                 "storey": d.storey, "wall": d.wall,
                  "position": _v(d.position), "width": _r(d.width), "height": _r(d.height),
-                 "rooms": list(d.rooms)} for di, d in enumerate(result.doorways)]
+                 "rooms": list(d.rooms), "kind": d.kind} for di, d in enumerate(result.doorways)]
     return {
         "format": "is_graphs.agraph", "version": 1,
         "source": {"file": os.path.basename(m.path), "sha256": m.sha256, "schema": m.schema,

@@ -47,6 +47,9 @@ class Diagnostics:
 
     def warn(self, what, entity=None):
         text = f"{entity_label(entity)}: {what}" if entity is not None else what
+        guid = getattr(entity, "GlobalId", None) if entity is not None else None
+        if guid:
+            text += f" [GlobalId {guid}]"
         self.warnings.append(text)
         if self.echo:
             print(f"{PROG}: warning: {self.file_name}: {text}", file=sys.stderr)

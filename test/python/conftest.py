@@ -89,11 +89,16 @@ def _box(f, ctx, k, sx, sy, sz, x0=0.0, y0=0.0, z0=0.0):
 
 
 def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wall=False,
-                lonely_door=False, external_pset=True, south_external=True):
+                lonely_door=False, external_pset=True, south_external=True, partition="door",
+                window_opening=False, virtual_element=False):
     """Two rooms A (x 0.2..3.9) and B (x 4.1..7.8), y 0.2..3.8, walls 0.2 m thick, 2.6 m high;
     door D_AB in the partition (x 4.0, y 1.0..1.9), door D_out in the south wall of A
     (y 0.1, x 1.0..2.0). Options add a zero-length wall, a door in a free-standing wall far away,
-    drop the spaces or the walls (and doors), use another unit. Returns {name: step id}."""
+    drop the spaces or the walls (and doors), use another unit. partition="opening" leaves D_AB's
+    opening (OP_AB) without its door; "none" drops the partition and its door, and the spaces
+    then meet at x 4.0 (virtual_element adds an IfcVirtualElement V_AB there, bounding both by
+    VIRTUAL space boundaries). window_opening adds an unfilled opening OP_win in B's north wall,
+    sill 1.0 m, 1.2 m high. Returns {name: step id}."""
     import ifcopenshell
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -118,15 +123,19 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
         owner_settings.get_application = lambda _f: app
         try:
             return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
-                                     external_pset, south_external)
+                                     external_pset, south_external, partition, window_opening,
+                                     virtual_element)
         finally:
             owner_settings.get_user, owner_settings.get_application = saved
     return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
-                             external_pset, south_external)
+                             external_pset, south_external, partition, window_opening,
+                             virtual_element)
 
 
 def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, external_pset,
-                      south_external):
+                      south_external, partition="door", window_opening=False,
+                      virtual_element=False):
+    import ifcopenshell.guid
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
     import ifcopenshell.api.feature
@@ -179,19 +188,25 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
     wall("W_north", 8.0, 4.0, 8.0, 180.0, True)
     wall("W_west", 0.0, 4.0, 4.0, -90.0, True)
     wall("W_east", 8.0, 0.0, 4.0, 90.0, True)
-    part = wall("W_part", 4.1, 0.0, 4.0, 90.0, False)
+    part = wall("W_part", 4.1, 0.0, 4.0, 90.0, False) if partition != "none" else None
     if zero_wall:
         wall("W_zero", 2.0, 2.0, 0.0, 0.0, False)
     lonely = wall("W_lonely", 20.0, 20.0, 3.0, 0.0, False) if lonely_door else None
 
-    def door(name, host, lx, width=0.9, height=2.1):
-        """A door at local x = lx..lx+width of the host wall."""
-        op = ifcopenshell.api.root.create_entity(f, ifc_class="IfcOpeningElement", name=name + "_op")
+    def opening(name, host, lx, width, height, sill=0.0, register=True):
+        op = ifcopenshell.api.root.create_entity(f, ifc_class="IfcOpeningElement", name=name)
         _placement(f, op, 0.0, 0.0)
         ifcopenshell.api.geometry.assign_representation(
-            f, product=op, representation=_box(f, body, k, width, 0.4, height, lx, -0.1, 0.0))
+            f, product=op, representation=_box(f, body, k, width, 0.4, height, lx, -0.1, sill))
         op.ObjectPlacement.PlacementRelTo = host.ObjectPlacement
         ifcopenshell.api.feature.add_feature(f, feature=op, element=host)
+        if register:
+            ids[name] = op.id()
+        return op
+
+    def door(name, host, lx, width=0.9, height=2.1):
+        """A door at local x = lx..lx+width of the host wall."""
+        op = opening(name + "_op", host, lx, width, height, register=False)
         d = ifcopenshell.api.root.create_entity(f, ifc_class="IfcDoor", name=name)
         d.OverallWidth, d.OverallHeight = width * k, height * k
         _placement(f, d, 0.0, 0.0)
@@ -202,7 +217,12 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
         ifcopenshell.api.spatial.assign_container(f, products=[d], relating_structure=storey)
         ids[name] = d.id()
 
-    door("D_AB", part, 1.0)         # partition: local x runs along +y from y=0
+    if partition == "door":
+        door("D_AB", part, 1.0)     # partition: local x runs along +y from y=0
+    elif partition == "opening":
+        opening("OP_AB", part, 1.0, 0.9, 2.1)
+    if window_opening:
+        opening("OP_win", f.by_id(ids["W_north"]), 1.5, 1.2, 1.2, sill=1.0)
     door("D_out", south, 1.0, 1.0)
     if not walls:
         for name in [n for n in ids if n.startswith(("W_", "D_"))]:
@@ -210,7 +230,8 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
     if lonely is not None:
         door("D_lonely", lonely, 1.0)
     if spaces:
-        for name, x0, x1 in (("A", 0.2, 3.9), ("B", 4.1, 7.8)):
+        split = (4.0, 4.0) if partition == "none" else (3.9, 4.1)
+        for name, x0, x1 in (("A", 0.2, split[0]), ("B", split[1], 7.8)):
             sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name=name,
                                                      )
             sp.LongName = "Room " + name
@@ -219,6 +240,15 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
             ifcopenshell.api.geometry.assign_representation(
                 f, product=sp, representation=_box(f, body, k, x1 - x0, 3.6, 2.6, x0, 0.2, 0.0))
             ids["space_" + name] = sp.id()
+        if virtual_element:
+            ve = ifcopenshell.api.root.create_entity(f, ifc_class="IfcVirtualElement", name="V_AB")
+            ifcopenshell.api.spatial.assign_container(f, products=[ve], relating_structure=storey)
+            ids["V_AB"] = ve.id()
+            for name in ("A", "B"):
+                f.create_entity("IfcRelSpaceBoundary", GlobalId=ifcopenshell.guid.new(),
+                                RelatingSpace=f.by_id(ids["space_" + name]),
+                                RelatedBuildingElement=ve, PhysicalOrVirtualBoundary="VIRTUAL",
+                                InternalOrExternalBoundary="INTERNAL")
     f.write(str(path))
     return ids
 

@@ -16,7 +16,7 @@ FIELDS = {
     "rooms": {"id", "ifc_id", "guid", "name", "long_name", "storey", "polygon", "z_min", "z_max",
               "center", "area", "surfaces", "walls", "doorways"},
     "doorways": {"id", "ifc_id", "guid", "name", "storey", "wall", "position", "width", "height",
-                 "rooms"},
+                 "rooms", "kind"},
 }
 
 
@@ -59,6 +59,9 @@ def test_references_are_consistent(graph):
     for d in g["doorways"]:
         assert 1 <= len(d["rooms"]) <= 2 and len(set(d["rooms"])) == len(d["rooms"])
         assert -1 <= d["wall"] < len(g["walls"])
+        assert d["kind"] in ("door", "opening", "virtual")
+        if d["kind"] == "virtual":
+            assert d["wall"] == -1 and len(d["rooms"]) == 2
         for r in d["rooms"]:
             assert d["id"] in g["rooms"][r]["doorways"]
 
