@@ -139,6 +139,14 @@ def _inside_piece(point, piece, margin=0.02):
     return abs(s - s_mid) <= 0.5 * piece.length + margin
 
 
+def _holds_all(piece, verts, margin=0.02):
+    """Whether every vertex lies inside a straight piece's box (2D, within margin)."""
+    a, b = piece.faces
+    s_mid = piece.start @ a.tangent
+    return bool(np.all(verts @ a.normal - a.d <= margin) and np.all(verts @ b.normal - b.d <= margin)
+                and np.all(np.abs(verts @ a.tangent - s_mid) <= 0.5 * piece.length + margin))
+
+
 def wall_pieces(shape, axis_dir=None):
     """([WallPiece], problem): the straight pieces of a wall, or [] and why there are none.
 
@@ -181,6 +189,11 @@ def wall_pieces(shape, axis_dir=None):
         return [], ("no two parallel vertical faces with material between them "
                     "(zero length or thickness, or not a solid)")
     paired_area = sum(p.faces[0].area + p.faces[1].area for p in pieces)
+    if len(pieces) == 1 and paired_area < 0.4 * vertical_area \
+            and _holds_all(pieces[0], shape.verts):
+        # Every vertex lies between the two faces: a straight wall whose inside has many faces
+        # of its own (a slatted screen of mapped breps: Smiley West's six privacy walls).
+        return pieces, None
     if len(pieces) > MAX_PIECES or paired_area < 0.4 * vertical_area:
         return [], ("not made of straight pieces (curved?): its largest opposed faces cover "
                     f"{100.0 * paired_area / vertical_area:.0f}% of its vertical area")
