@@ -77,7 +77,32 @@ def build(result, mesh_name):
                    "converter_version": CONVERTER_VERSION},
         "building": m.building_name, "mesh": mesh_name,
         "storeys": storeys, "wall_surfaces": surfaces, "walls": walls, "rooms": rooms,
-        "doorways": doorways, "warnings": list(result.warnings)}
+        "doorways": doorways, "warnings": list(result.warnings),
+        "report": report(result, storeys, surfaces, walls, rooms, doorways)}
+
+
+KINDS = ("door", "opening", "virtual")
+
+
+def report(result, storeys, surfaces, walls, rooms, doorways):
+    """Per storey: what was kept (counts) and what was dropped, by IFC class and reason."""
+    out = []
+    for s in storeys:
+        k = s["id"]
+
+        def count(items):
+            return sum(1 for e in items if e["storey"] == k)
+        kinds = {kind: sum(1 for d in doorways if d["storey"] == k and d["kind"] == kind)
+                 for kind in KINDS}
+        dropped = sorted((result.dropped.get(k) or {}).items())
+        out.append({
+            "storey": k, "name": s["name"],
+            "kept": {"walls": len({w["ifc_id"] for w in walls if w["storey"] == k}),
+                     "wall_pieces": count(walls), "wall_surfaces": count(surfaces),
+                     "rooms": count(rooms), "doorways": kinds},
+            "dropped": [{"ifc_class": cls, "reason": why, "count": n}
+                        for (cls, why), n in dropped]})
+    return out
 
 
 def dumps(graph):
@@ -125,4 +150,12 @@ def summary_lines(graph):
         lines.append(f"  storey {s['id']} '{s['name']}' z={s['elevation']:.3f} m: "
                      f"{count('wall_surfaces')} wall-surfaces, {count('walls')} walls, "
                      f"{count('rooms')} rooms, {count('doorways')} doorways")
+        rep = next((r for r in graph.get("report", []) if r["storey"] == s["id"]), None)
+        if rep is None:
+            continue
+        kinds = rep["kept"]["doorways"]
+        if kinds.get("opening") or kinds.get("virtual"):
+            lines.append("    doorways: " + ", ".join(f"{kinds.get(k, 0)} {k}" for k in KINDS))
+        for d in rep["dropped"]:
+            lines.append(f"    dropped: {d['count']} {d['ifc_class']}: {d['reason']}")
     return lines

@@ -118,3 +118,21 @@ def test_fzk_kitchen_living_and_hall_are_open_to_each_other(fzk):
                     77636: ["Flur", "Küche"]}
     doors = [d for d in g["doorways"] if d["kind"] == "door"]
     assert len(doors) == 5
+
+
+def test_report_says_what_was_dropped_and_why(make_house, run_converter, tmp_path):
+    path, ids = make_house(window_opening=True, zero_wall=True, partition="opening")
+    proc = run_converter([path, "-o", tmp_path / "h"])
+    assert proc.returncode == 0, proc.stderr
+    with open(proc.stdout.strip().splitlines()[-1], encoding="utf-8") as fh:
+        g = json.load(fh)
+    (rep,) = g["report"]
+    assert rep["kept"]["doorways"] == {"door": 1, "opening": 1, "virtual": 0}
+    assert rep["kept"]["walls"] == 5 and rep["kept"]["rooms"] == 2
+    dropped = {(d["ifc_class"], d["reason"]): d["count"] for d in rep["dropped"]}
+    assert dropped[("IfcOpeningElement", "window-like")] == 1
+    assert sum(n for (cls, _), n in dropped.items() if cls == "IfcWall") == 1
+    # ... and the converter prints it under the storey's summary line.
+    assert "    doorways: 1 door, 1 opening, 0 virtual" in proc.stdout
+    assert "    dropped: 1 IfcOpeningElement: window-like" in proc.stdout
+    assert "    dropped: 1 IfcWall: " in proc.stdout

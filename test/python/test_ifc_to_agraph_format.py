@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 TOP_KEYS = ["format", "version", "source", "building", "mesh", "storeys", "wall_surfaces",
-            "walls", "rooms", "doorways", "warnings"]
+            "walls", "rooms", "doorways", "warnings", "report"]
 FIELDS = {
     "storeys": {"id", "ifc_id", "guid", "name", "elevation", "height"},
     "wall_surfaces": {"id", "ifc_id", "guid", "wall", "storey", "normal", "d", "orientation",
@@ -42,6 +42,25 @@ def test_schema(graph):
             assert set(e) == fields, key
             assert e["id"] == k
             assert isinstance(e["ifc_id"], int) and isinstance(e["guid"], str)
+
+
+def test_report_counts_what_was_kept(graph):
+    g = graph
+    assert [r["storey"] for r in g["report"]] == [s["id"] for s in g["storeys"]]
+    for r, s in zip(g["report"], g["storeys"]):
+        k = s["id"]
+        assert r["name"] == s["name"]
+        kept = r["kept"]
+        assert kept["wall_pieces"] == sum(1 for w in g["walls"] if w["storey"] == k)
+        assert kept["walls"] == len({w["ifc_id"] for w in g["walls"] if w["storey"] == k})
+        assert kept["wall_surfaces"] == sum(1 for x in g["wall_surfaces"] if x["storey"] == k)
+        assert kept["rooms"] == sum(1 for x in g["rooms"] if x["storey"] == k)
+        assert kept["doorways"] == {kind: sum(1 for d in g["doorways"] if d["storey"] == k
+                                              and d["kind"] == kind)
+                                    for kind in ("door", "opening", "virtual")}
+        for d in r["dropped"]:
+            assert set(d) == {"ifc_class", "reason", "count"} and d["count"] >= 1
+            assert d["ifc_class"].startswith("Ifc") and d["reason"]
 
 
 def test_references_are_consistent(graph):
