@@ -80,9 +80,45 @@ def _convert_walls(model, shapes, sidx, diag, tally):
         ext = ifc_model.wall_is_external(w)
         for p in pieces:
             out.append(WallOut(w, storey, p, (-1, -1), ext))
+    out += _convert_curtain_walls(model, shapes, sidx, diag, tally)
     out.sort(key=lambda wo: (wo.storey, wo.entity.id()))   # stable: keeps piece order
     for k, wo in enumerate(out):
         wo.surfaces = (2 * k, 2 * k + 1)
+    return out
+
+
+def _parts(element, depth=0):
+    """An element's parts (IfcRelAggregates), recursively."""
+    out = []
+    for rel in getattr(element, "IsDecomposedBy", None) or ():
+        for p in rel.RelatedObjects or ():
+            out.append(p)
+            if depth < 4:
+                out += _parts(p, depth + 1)
+    return out
+
+
+def _convert_curtain_walls(model, shapes, sidx, diag, tally):
+    """An IfcCurtainWall (its own body and its plates and members together) is one straight wall
+    whose faces are the outer planes of all its parts."""
+    out = []
+    for cw in sorted(model.file.by_type("IfcCurtainWall"), key=lambda w: w.id()):
+        parts = _parts(cw)
+        panels = [p for p in parts if p.is_a("IfcPlate") and p.id() in shapes]
+        pieces = [shapes[e.id()] for e in [cw] + parts if e.id() in shapes]
+        if not panels:
+            diag.warn(f"curtain wall without panels (no IfcPlate with geometry among its "
+                      f"{len(parts)} parts): skipped", cw)
+            tally.drop(sidx.of(cw), cw, "curtain wall without panels")
+            continue
+        points = np.vstack([sh.verts for sh in pieces])
+        piece, problem = walls.straight_piece(points)
+        if piece is None:
+            diag.warn(f"curtain wall {problem}: skipped", cw)
+            tally.drop(sidx.of(cw, float(points[:, 2].min())), cw, "curtain wall not straight")
+            continue
+        storey = sidx.of(cw, piece.z_min)
+        out.append(WallOut(cw, storey, piece, (-1, -1), ifc_model.wall_is_external(cw)))
     return out
 
 

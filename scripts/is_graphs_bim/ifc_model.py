@@ -315,6 +315,9 @@ def list_storeys(model):
 
 
 def wall_is_external(wall):
-    """Pset_WallCommon.IsExternal as a bool, None when absent."""
-    value = uelement.get_psets(wall).get("Pset_WallCommon", {}).get("IsExternal")
+    """Pset_WallCommon.IsExternal (Pset_CurtainWallCommon for curtain walls) as a bool, None when
+    absent."""
+    psets = uelement.get_psets(wall)
+    pset = "Pset_CurtainWallCommon" if wall.is_a("IfcCurtainWall") else "Pset_WallCommon"
+    value = psets.get(pset, {}).get("IsExternal")
     return None if value is None else bool(value)

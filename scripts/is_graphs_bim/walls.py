@@ -245,3 +245,30 @@ def _straight_direction(curve):
         return np.array(pts[-1][:2], dtype=float) - np.array(pts[0][:2], dtype=float) \
             if len(pts) == 2 else None
     return None
+
+
+MAX_CURTAIN_DEPTH = 0.6     # m: a straight curtain wall's panels and mullions lie within this
+
+
+def straight_piece(points):
+    """(WallPiece, None) for an element whose points lie in one straight vertical slab (a
+    curtain wall's panels and mullions taken together): its faces are the slab's two outer
+    planes. ([], why) when the points do not make a straight slab."""
+    if len(points) < 4:
+        return None, "no geometry"
+    xy = points[:, :2] - points[:, :2].mean(axis=0)
+    w, v = np.linalg.eigh(xy.T @ xy)
+    n = np.array([v[0, 0], v[1, 0], 0.0])
+    n /= np.linalg.norm(n)
+    if n[0] < -1e-9 or (abs(n[0]) <= 1e-9 and n[1] < 0):
+        n = -n                      # a deterministic sign
+    s = points @ n
+    depth = float(s.max() - s.min())
+    t = np.array([-n[1], n[0], 0.0])
+    st = points @ t
+    if depth > MAX_CURTAIN_DEPTH or depth < MIN_THICKNESS:
+        return None, (f"not one straight slab: its parts span {depth:.2f} m across its "
+                      f"{float(st.max() - st.min()):.2f} m length (curved or bent?)")
+    a = Plane(n, float(s.max()), 0.0, points)
+    b = Plane(-n, -float(s.min()), 0.0, points)
+    return _make_piece(a, b), None

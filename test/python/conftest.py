@@ -90,7 +90,7 @@ def _box(f, ctx, k, sx, sy, sz, x0=0.0, y0=0.0, z0=0.0):
 
 def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wall=False,
                 lonely_door=False, external_pset=True, south_external=True, partition="door",
-                window_opening=False, virtual_element=False):
+                window_opening=False, virtual_element=False, curtain_wall=None):
     """Two rooms A (x 0.2..3.9) and B (x 4.1..7.8), y 0.2..3.8, walls 0.2 m thick, 2.6 m high;
     door D_AB in the partition (x 4.0, y 1.0..1.9), door D_out in the south wall of A
     (y 0.1, x 1.0..2.0). Options add a zero-length wall, a door in a free-standing wall far away,
@@ -98,7 +98,10 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
     opening (OP_AB) without its door; "none" drops the partition and its door, and the spaces
     then meet at x 4.0 (virtual_element adds an IfcVirtualElement V_AB there, bounding both by
     VIRTUAL space boundaries). window_opening adds an unfilled opening OP_win in B's north wall,
-    sill 1.0 m, 1.2 m high. Returns {name: step id}."""
+    sill 1.0 m, 1.2 m high. curtain_wall="panels" replaces the east wall by an IfcCurtainWall
+    CW_east (x 7.8..8.0) of three mullions (IfcMember, 0.1 x 0.2 m) and two glass panels
+    (IfcPlate, 0.02 m thick, in the middle) aggregated to it; "empty" gives it no parts.
+    Returns {name: step id}."""
     import ifcopenshell
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -124,17 +127,17 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
         try:
             return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
                                      external_pset, south_external, partition, window_opening,
-                                     virtual_element)
+                                     virtual_element, curtain_wall)
         finally:
             owner_settings.get_user, owner_settings.get_application = saved
     return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
                              external_pset, south_external, partition, window_opening,
-                             virtual_element)
+                             virtual_element, curtain_wall)
 
 
 def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, external_pset,
                       south_external, partition="door", window_opening=False,
-                      virtual_element=False):
+                      virtual_element=False, curtain_wall=None):
     import ifcopenshell.guid
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -187,7 +190,26 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
     south = wall("W_south", 0.0, 0.0, 8.0, 0.0, south_external)
     wall("W_north", 8.0, 4.0, 8.0, 180.0, True)
     wall("W_west", 0.0, 4.0, 4.0, -90.0, True)
-    wall("W_east", 8.0, 0.0, 4.0, 90.0, True)
+    if curtain_wall is None:
+        wall("W_east", 8.0, 0.0, 4.0, 90.0, True)
+    else:
+        cw = ifcopenshell.api.root.create_entity(f, ifc_class="IfcCurtainWall", name="CW_east")
+        _placement(f, cw, 8.0, 0.0, 0.0, 90.0)
+        ifcopenshell.api.spatial.assign_container(f, products=[cw], relating_structure=storey)
+        ids["CW_east"] = cw.id()
+        parts = []
+        if curtain_wall == "panels":
+            for i, x0 in enumerate((0.0, 1.95, 3.9)):
+                parts.append(("IfcMember", f"CW_m{i}", (0.1, 0.2, 2.6, x0, 0.0)))
+            for i, (x0, x1) in enumerate(((0.1, 1.95), (2.05, 3.9))):
+                parts.append(("IfcPlate", f"CW_p{i}", (x1 - x0, 0.02, 2.6, x0, 0.09)))
+        for cls, name, (sx, sy, sz, x0, y0) in parts:
+            p = ifcopenshell.api.root.create_entity(f, ifc_class=cls, name=name)
+            _placement(f, p, 8.0, 0.0, 0.0, 90.0)
+            ifcopenshell.api.geometry.assign_representation(
+                f, product=p, representation=_box(f, body, k, sx, sy, sz, x0, y0))
+            ifcopenshell.api.aggregate.assign_object(f, relating_object=cw, products=[p])
+            ids[name] = p.id()
     part = wall("W_part", 4.1, 0.0, 4.0, 90.0, False) if partition != "none" else None
     if zero_wall:
         wall("W_zero", 2.0, 2.0, 0.0, 0.0, False)
