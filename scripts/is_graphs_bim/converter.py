@@ -151,6 +151,19 @@ def _space_boundary_pairs(model):
     return pairs
 
 
+def _check_rooms(model, rooms, diag):
+    """Warnings for spaces that are poor rooms: no bounding wall, no space boundary."""
+    bounded = {rel.RelatingSpace.id() for rel in model.file.by_type("IfcRelSpaceBoundary")
+               if rel.RelatingSpace is not None}
+    for r in rooms:
+        if not r.surfaces:
+            diag.warn("no wall-surface along its outline (not a room bounded by walls): kept as "
+                      "a room without walls (its footprint and doorways only)", r.entity)
+        if bounded and r.ifc_id not in bounded:
+            diag.warn("no IfcRelSpaceBoundary (the file has them for other spaces): its walls "
+                      "found from the geometry alone", r.entity)
+
+
 def _infer_external(wall_list, rooms):
     """IsExternal when given; else a wall one face of which bounds a room and the other none."""
     bounded = defaultdict(int)
@@ -385,11 +398,6 @@ def _storey_heights(storeys, wall_list):
 def convert(path, diag):
     """Converts one IFC file; raises ifc_model.ConversionError when it cannot."""
     model, forced_unit = ifc_model.open_model(path, diag)
-    storeys = ifc_model.list_storeys(model)
-    if not storeys:
-        diag.warn("no IfcBuildingStorey: everything is put on one storey at elevation 0")
-        storeys = [(None, 0.0)]
-    sidx = _StoreyIndex(storeys)
     if not model.file.by_type("IfcWall"):
         raise ifc_model.ConversionError(
             "no IfcWall in the file: an A-Graph needs walls (were walls exported as IfcWall?)")
@@ -398,6 +406,11 @@ def convert(path, diag):
             "no IfcSpace in the file: rooms cannot be built; the authoring tool must export "
             "spaces (Revit: rooms/areas, ArchiCAD: zones) to IFC as IfcSpace")
     shapes = mesh.triangulate(model, forced_unit)
+    storeys = ifc_model.list_storeys(model, diag, shapes)
+    if not storeys:
+        diag.warn("no IfcBuildingStorey: everything is put on one storey at elevation 0")
+        storeys = [(None, 0.0)]
+    sidx = _StoreyIndex(storeys)
     tally = Tally()
     wall_list = _convert_walls(model, shapes, sidx, diag, tally)
     if not wall_list:
@@ -407,6 +420,7 @@ def convert(path, diag):
     triples = [(wo.entity.id(), wo.piece, wo.surfaces) for wo in wall_list]
     for ri, sid in boundaries.bound_rooms(triples, rooms, rsb):
         rooms[ri].surfaces.add(sid)
+    _check_rooms(model, rooms, diag)
     _infer_external(wall_list, rooms)
     door_list = _convert_doors(model, shapes, wall_list, rooms, sidx, rsb, diag, tally)
     door_list += _convert_openings(model, shapes, wall_list, rooms, sidx, door_list, diag, tally)

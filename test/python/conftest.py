@@ -90,7 +90,8 @@ def _box(f, ctx, k, sx, sy, sz, x0=0.0, y0=0.0, z0=0.0):
 
 def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wall=False,
                 lonely_door=False, external_pset=True, south_external=True, partition="door",
-                window_opening=False, virtual_element=False, curtain_wall=None):
+                window_opening=False, virtual_element=False, curtain_wall=None,
+                storey_elevation=0.0, storey_placement=True, extras=()):
     """Two rooms A (x 0.2..3.9) and B (x 4.1..7.8), y 0.2..3.8, walls 0.2 m thick, 2.6 m high;
     door D_AB in the partition (x 4.0, y 1.0..1.9), door D_out in the south wall of A
     (y 0.1, x 1.0..2.0). Options add a zero-length wall, a door in a free-standing wall far away,
@@ -101,7 +102,9 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
     sill 1.0 m, 1.2 m high. curtain_wall="panels" replaces the east wall by an IfcCurtainWall
     CW_east (x 7.8..8.0) of three mullions (IfcMember, 0.1 x 0.2 m) and two glass panels
     (IfcPlate, 0.02 m thick, in the middle) aggregated to it; "empty" gives it no parts.
-    Returns {name: step id}."""
+    storey_elevation=None leaves the storey's Elevation unset, storey_placement=False drops its
+    placement. extras: "space_C" adds a space C far from every wall (x 20..23, y 0..3);
+    "orphan_opening" an IfcOpeningElement OP_orphan that voids nothing. Returns {name: step id}."""
     import ifcopenshell
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -127,17 +130,20 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
         try:
             return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
                                      external_pset, south_external, partition, window_opening,
-                                     virtual_element, curtain_wall)
+                                     virtual_element, curtain_wall, storey_elevation,
+                                     storey_placement, extras)
         finally:
             owner_settings.get_user, owner_settings.get_application = saved
     return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
                              external_pset, south_external, partition, window_opening,
-                             virtual_element, curtain_wall)
+                             virtual_element, curtain_wall, storey_elevation, storey_placement,
+                             extras)
 
 
 def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, external_pset,
                       south_external, partition="door", window_opening=False,
-                      virtual_element=False, curtain_wall=None):
+                      virtual_element=False, curtain_wall=None, storey_elevation=0.0,
+                      storey_placement=True, extras=()):
     import ifcopenshell.guid
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -271,6 +277,25 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
                                 RelatingSpace=f.by_id(ids["space_" + name]),
                                 RelatedBuildingElement=ve, PhysicalOrVirtualBoundary="VIRTUAL",
                                 InternalOrExternalBoundary="INTERNAL")
+    if "space_C" in extras:
+        sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name="C")
+        _placement(f, sp, 0.0, 0.0)
+        ifcopenshell.api.aggregate.assign_object(f, relating_object=storey, products=[sp])
+        ifcopenshell.api.geometry.assign_representation(
+            f, product=sp, representation=_box(f, body, k, 3.0, 3.0, 2.6, 20.0, 0.0, 0.0))
+        ids["space_C"] = sp.id()
+    if "orphan_opening" in extras:
+        op = ifcopenshell.api.root.create_entity(f, ifc_class="IfcOpeningElement",
+                                                 name="OP_orphan")
+        _placement(f, op, 0.0, 0.0)
+        ifcopenshell.api.geometry.assign_representation(
+            f, product=op, representation=_box(f, body, k, 1.0, 0.4, 2.1, 2.0, 3.7, 0.0))
+        ids["OP_orphan"] = op.id()
+    if storey_elevation is not None:
+        storey.Elevation = storey_elevation * k
+    if not storey_placement:
+        storey.ObjectPlacement = None
+    ids["storey"] = storey.id()
     f.write(str(path))
     return ids
 
