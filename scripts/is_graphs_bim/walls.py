@@ -266,7 +266,9 @@ def straight_piece(points):
     depth = float(s.max() - s.min())
     t = np.array([-n[1], n[0], 0.0])
     st = points @ t
-    if depth > MAX_CURTAIN_DEPTH or depth < MIN_THICKNESS:
+    if depth < MIN_THICKNESS:
+        return None, f"without thickness (its parts span {depth:.3f} m across it)"
+    if depth > MAX_CURTAIN_DEPTH:
         return None, (f"not one straight slab: its parts span {depth:.2f} m across its "
                       f"{float(st.max() - st.min()):.2f} m length (curved or bent?)")
     a = Plane(n, float(s.max()), 0.0, points)

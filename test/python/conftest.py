@@ -104,7 +104,8 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
     (IfcPlate, 0.02 m thick, in the middle) aggregated to it; "empty" gives it no parts.
     storey_elevation=None leaves the storey's Elevation unset, storey_placement=False drops its
     placement. extras: "space_C" adds a space C far from every wall (x 20..23, y 0..3);
-    "orphan_opening" an IfcOpeningElement OP_orphan that voids nothing. Returns {name: step id}."""
+    "orphan_opening" an IfcOpeningElement OP_orphan that voids nothing; "dup_opening" an unfilled
+    opening OP_dup in the partition where door D_AB is. Returns {name: step id}."""
     import ifcopenshell
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -209,6 +210,9 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
                 parts.append(("IfcMember", f"CW_m{i}", (0.1, 0.2, 2.6, x0, 0.0)))
             for i, (x0, x1) in enumerate(((0.1, 1.95), (2.05, 3.9))):
                 parts.append(("IfcPlate", f"CW_p{i}", (x1 - x0, 0.02, 2.6, x0, 0.09)))
+        elif curtain_wall == "bent":     # a second panel turned 90 degrees, 1 m deep
+            parts.append(("IfcPlate", "CW_p0", (3.8, 0.02, 2.6, 0.1, 0.09)))
+            parts.append(("IfcPlate", "CW_p1", (0.02, 1.0, 2.6, 3.9, 0.0)))
         for cls, name, (sx, sy, sz, x0, y0) in parts:
             p = ifcopenshell.api.root.create_entity(f, ifc_class=cls, name=name)
             _placement(f, p, 8.0, 0.0, 0.0, 90.0)
@@ -247,6 +251,8 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
 
     if partition == "door":
         door("D_AB", part, 1.0)     # partition: local x runs along +y from y=0
+        if "dup_opening" in extras:
+            opening("OP_dup", part, 1.1, 0.8, 2.1)
     elif partition == "opening":
         opening("OP_AB", part, 1.0, 0.9, 2.1)
     if window_opening:

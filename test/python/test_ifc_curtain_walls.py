@@ -39,3 +39,11 @@ def test_curtain_wall_without_panels_warns(make_house, run_converter, tmp_path):
     dropped = g["report"][0]["dropped"]
     assert {"ifc_class": "IfcCurtainWall", "reason": "curtain wall without panels",
             "count": 1} in dropped
+
+
+def test_bent_curtain_wall_warns(make_house, run_converter, tmp_path):
+    path, ids = make_house(curtain_wall="bent")
+    g = _convert(run_converter, path, tmp_path / "h")
+    assert ids["CW_east"] not in [w["ifc_id"] for w in g["walls"]]
+    (w,) = [x for x in g["warnings"] if x.startswith(f"IfcCurtainWall #{ids['CW_east']}: ")]
+    assert "not one straight slab" in w and "1.00 m across" in w and "skipped" in w

@@ -136,3 +136,12 @@ def test_report_says_what_was_dropped_and_why(make_house, run_converter, tmp_pat
     assert "    doorways: 1 door, 1 opening, 0 virtual" in proc.stdout
     assert "    dropped: 1 IfcOpeningElement: window-like" in proc.stdout
     assert "    dropped: 1 IfcWall: " in proc.stdout
+
+
+def test_unfilled_opening_where_a_door_is_is_not_a_second_doorway(make_house, run_converter,
+                                                                  tmp_path):
+    path, ids = make_house(extras=("dup_opening",))
+    g, _ = _convert(run_converter, path, tmp_path / "h")
+    assert sorted(d["ifc_id"] for d in g["doorways"]) == sorted([ids["D_AB"], ids["D_out"]])
+    (w,) = [w for w in g["warnings"] if w.startswith(f"IfcOpeningElement #{ids['OP_dup']}: ")]
+    assert f"overlapping IfcDoor #{ids['D_AB']}" in w and "not a second doorway" in w
