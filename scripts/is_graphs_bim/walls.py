@@ -143,7 +143,8 @@ def _holds_all(piece, verts, margin=0.02):
     """Whether every vertex lies inside a straight piece's box (2D, within margin)."""
     a, b = piece.faces
     s_mid = piece.start @ a.tangent
-    return bool(np.all(verts @ a.normal - a.d <= margin) and np.all(verts @ b.normal - b.d <= margin)
+    return bool(np.all(verts @ a.normal - a.d <= margin)
+                and np.all(verts @ b.normal - b.d <= margin)
                 and np.all(np.abs(verts @ a.tangent - s_mid) <= 0.5 * piece.length + margin))
 
 

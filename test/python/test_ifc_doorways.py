@@ -39,7 +39,8 @@ def test_doorless_opening_joins_its_rooms(make_house, run_converter, tmp_path):
     assert d["ifc_id"] == ids["OP_AB"] and d["guid"]
     assert sorted(d["rooms"]) == sorted([_room(g, "A"), _room(g, "B")])
     assert g["walls"][d["wall"]]["ifc_id"] == ids["W_part"]
-    assert d["width"] == pytest.approx(0.9, abs=0.01) and d["height"] == pytest.approx(2.1, abs=0.01)
+    assert d["width"] == pytest.approx(0.9, abs=0.01)
+    assert d["height"] == pytest.approx(2.1, abs=0.01)
     assert d["position"][0] == pytest.approx(4.0, abs=0.01)
     assert d["position"][1] == pytest.approx(1.45, abs=0.01)
     for r in d["rooms"]:
