@@ -65,10 +65,11 @@ def build(result, mesh_name):
             "center": _v([c[0], c[1], 0.5 * (r.z_min + r.z_max)]), "area": _r(r.area),
             "surfaces": sids, "walls": sorted({surfaces[s]["wall"] for s in sids}),
             "doorways": sorted(r.doorways)})
-    doorways = [{"id": di, "ifc_id": d.entity.id(), "guid": _guid(d.entity),
-                 "name": d.entity.Name or "", "storey": d.storey, "wall": d.wall,
+    doorways = [{"id": di, "ifc_id": _id(d.entity), "guid": _guid(d.entity),
+                 "name": (getattr(d.entity, "Name", None) or "") if d.entity is not None else "",
+                 "storey": d.storey, "wall": d.wall,
                  "position": _v(d.position), "width": _r(d.width), "height": _r(d.height),
-                 "rooms": list(d.rooms)} for di, d in enumerate(result.doorways)]
+                 "rooms": list(d.rooms), "kind": d.kind} for di, d in enumerate(result.doorways)]
     return {
         "format": "is_graphs.agraph", "version": 1,
         "source": {"file": os.path.basename(m.path), "sha256": m.sha256, "schema": m.schema,
@@ -76,7 +77,32 @@ def build(result, mesh_name):
                    "converter_version": CONVERTER_VERSION},
         "building": m.building_name, "mesh": mesh_name,
         "storeys": storeys, "wall_surfaces": surfaces, "walls": walls, "rooms": rooms,
-        "doorways": doorways, "warnings": list(result.warnings)}
+        "doorways": doorways, "warnings": list(result.warnings),
+        "report": report(result, storeys, surfaces, walls, rooms, doorways)}
+
+
+KINDS = ("door", "opening", "virtual")
+
+
+def report(result, storeys, surfaces, walls, rooms, doorways):
+    """Per storey: what was kept (counts) and what was dropped, by IFC class and reason."""
+    out = []
+    for s in storeys:
+        k = s["id"]
+
+        def count(items):
+            return sum(1 for e in items if e["storey"] == k)
+        kinds = {kind: sum(1 for d in doorways if d["storey"] == k and d["kind"] == kind)
+                 for kind in KINDS}
+        dropped = sorted((result.dropped.get(k) or {}).items())
+        out.append({
+            "storey": k, "name": s["name"],
+            "kept": {"walls": len({w["ifc_id"] for w in walls if w["storey"] == k}),
+                     "wall_pieces": count(walls), "wall_surfaces": count(surfaces),
+                     "rooms": count(rooms), "doorways": kinds},
+            "dropped": [{"ifc_class": cls, "reason": why, "count": n}
+                        for (cls, why), n in dropped]})
+    return out
 
 
 def dumps(graph):
@@ -124,4 +150,12 @@ def summary_lines(graph):
         lines.append(f"  storey {s['id']} '{s['name']}' z={s['elevation']:.3f} m: "
                      f"{count('wall_surfaces')} wall-surfaces, {count('walls')} walls, "
                      f"{count('rooms')} rooms, {count('doorways')} doorways")
+        rep = next((r for r in graph.get("report", []) if r["storey"] == s["id"]), None)
+        if rep is None:
+            continue
+        kinds = rep["kept"]["doorways"]
+        if kinds.get("opening") or kinds.get("virtual"):
+            lines.append("    doorways: " + ", ".join(f"{kinds.get(k, 0)} {k}" for k in KINDS))
+        for d in rep["dropped"]:
+            lines.append(f"    dropped: {d['count']} {d['ifc_class']}: {d['reason']}")
     return lines

@@ -8,13 +8,15 @@ PROBE_BEYOND = 0.3      # m past the wall face where the rooms are probed
 
 @dataclass
 class Doorway:
-    entity: object          # the IfcDoor
+    entity: object          # the IfcDoor, IfcOpeningElement or IfcVirtualElement; None for a
+                            # virtual separation no IfcVirtualElement stands for
     storey: int
     wall: int               # index into the converter's walls, -1 if unknown
     position: np.ndarray    # (3,) on the host wall's mid-plane, z at the sill
     width: float
     height: float
     rooms: list             # room indices
+    kind: str = "door"      # "door" | "opening" | "virtual" (docs/agraph_format.md)
 
 
 def host_wall_entity(door):
@@ -66,8 +68,8 @@ def locate(door, points, host_pieces, scale):
         pos = c.copy()
     pos[2] = lo[2]
     s = points @ t
-    width = float(door.OverallWidth or 0.0) * scale
-    height = float(door.OverallHeight or 0.0) * scale
+    width = float(getattr(door, "OverallWidth", None) or 0.0) * scale
+    height = float(getattr(door, "OverallHeight", None) or 0.0) * scale
     if not width > 0.0:
         width = float(s.max() - s.min())
     if not height > 0.0:

@@ -47,6 +47,9 @@ class Diagnostics:
 
     def warn(self, what, entity=None):
         text = f"{entity_label(entity)}: {what}" if entity is not None else what
+        guid = getattr(entity, "GlobalId", None) if entity is not None else None
+        if guid:
+            text += f" [GlobalId {guid}]"
         self.warnings.append(text)
         if self.echo:
             print(f"{PROG}: warning: {self.file_name}: {text}", file=sys.stderr)
@@ -299,19 +302,43 @@ def storey_of(element):
     return None
 
 
-def list_storeys(model):
-    """[(entity, elevation_m)] sorted by elevation then STEP id."""
+def list_storeys(model, diag=None, shapes=None):
+    """[(entity, elevation_m)] sorted by elevation then STEP id: the storey's placement, else its
+    Elevation; a storey without Elevation takes its placement's z or, without a placement, the
+    bottom of its spaces (shapes: {step id: mesh.Shape}), and a warning says so."""
     out = []
+    spaces_of = {}
+    if shapes is not None:
+        for sp in model.file.by_type("IfcSpace"):
+            st = storey_of(sp)
+            if st is not None and sp.id() in shapes:
+                spaces_of.setdefault(st.id(), []).append(float(shapes[sp.id()].verts[:, 2].min()))
     for s in model.file.by_type("IfcBuildingStorey"):
         z = placement_z(s, model.length_unit_m)
-        if z is None:
-            z = float(s.Elevation or 0.0) * model.length_unit_m
+        if s.Elevation is None:
+            bottoms = spaces_of.get(s.id(), [])
+            if z is not None:
+                what = f"taken from its placement (z = {z:.3f} m)"
+            elif bottoms:
+                z = min(bottoms)
+                what = (f"no placement either: taken from the bottom of its {len(bottoms)} "
+                        f"space(s) (z = {z:.3f} m)")
+            else:
+                z = 0.0
+                what = "no placement and no spaces either: elevation 0 assumed"
+            if diag is not None:
+                diag.warn(f"storey without Elevation: {what}", s)
+        elif z is None:
+            z = float(s.Elevation) * model.length_unit_m
         out.append((s, z))
     out.sort(key=lambda se: (se[1], se[0].id()))
     return out
 
 
 def wall_is_external(wall):
-    """Pset_WallCommon.IsExternal as a bool, None when absent."""
-    value = uelement.get_psets(wall).get("Pset_WallCommon", {}).get("IsExternal")
+    """Pset_WallCommon.IsExternal (Pset_CurtainWallCommon for curtain walls) as a bool, None when
+    absent."""
+    psets = uelement.get_psets(wall)
+    pset = "Pset_CurtainWallCommon" if wall.is_a("IfcCurtainWall") else "Pset_WallCommon"
+    value = psets.get(pset, {}).get("IsExternal")
     return None if value is None else bool(value)

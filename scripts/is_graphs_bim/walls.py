@@ -139,6 +139,15 @@ def _inside_piece(point, piece, margin=0.02):
     return abs(s - s_mid) <= 0.5 * piece.length + margin
 
 
+def _holds_all(piece, verts, margin=0.02):
+    """Whether every vertex lies inside a straight piece's box (2D, within margin)."""
+    a, b = piece.faces
+    s_mid = piece.start @ a.tangent
+    return bool(np.all(verts @ a.normal - a.d <= margin)
+                and np.all(verts @ b.normal - b.d <= margin)
+                and np.all(np.abs(verts @ a.tangent - s_mid) <= 0.5 * piece.length + margin))
+
+
 def wall_pieces(shape, axis_dir=None):
     """([WallPiece], problem): the straight pieces of a wall, or [] and why there are none.
 
@@ -181,6 +190,11 @@ def wall_pieces(shape, axis_dir=None):
         return [], ("no two parallel vertical faces with material between them "
                     "(zero length or thickness, or not a solid)")
     paired_area = sum(p.faces[0].area + p.faces[1].area for p in pieces)
+    if len(pieces) == 1 and paired_area < 0.4 * vertical_area \
+            and _holds_all(pieces[0], shape.verts):
+        # Every vertex lies between the two faces: a straight wall whose inside has many faces
+        # of its own (a slatted screen of mapped breps: Smiley West's six privacy walls).
+        return pieces, None
     if len(pieces) > MAX_PIECES or paired_area < 0.4 * vertical_area:
         return [], ("not made of straight pieces (curved?): its largest opposed faces cover "
                     f"{100.0 * paired_area / vertical_area:.0f}% of its vertical area")
@@ -232,3 +246,32 @@ def _straight_direction(curve):
         return np.array(pts[-1][:2], dtype=float) - np.array(pts[0][:2], dtype=float) \
             if len(pts) == 2 else None
     return None
+
+
+MAX_CURTAIN_DEPTH = 0.6     # m: a straight curtain wall's panels and mullions lie within this
+
+
+def straight_piece(points):
+    """(WallPiece, None) for an element whose points lie in one straight vertical slab (a
+    curtain wall's panels and mullions taken together): its faces are the slab's two outer
+    planes. ([], why) when the points do not make a straight slab."""
+    if len(points) < 4:
+        return None, "no geometry"
+    xy = points[:, :2] - points[:, :2].mean(axis=0)
+    w, v = np.linalg.eigh(xy.T @ xy)
+    n = np.array([v[0, 0], v[1, 0], 0.0])
+    n /= np.linalg.norm(n)
+    if n[0] < -1e-9 or (abs(n[0]) <= 1e-9 and n[1] < 0):
+        n = -n                      # a deterministic sign
+    s = points @ n
+    depth = float(s.max() - s.min())
+    t = np.array([-n[1], n[0], 0.0])
+    st = points @ t
+    if depth < MIN_THICKNESS:
+        return None, f"without thickness (its parts span {depth:.3f} m across it)"
+    if depth > MAX_CURTAIN_DEPTH:
+        return None, (f"not one straight slab: its parts span {depth:.2f} m across its "
+                      f"{float(st.max() - st.min()):.2f} m length (curved or bent?)")
+    a = Plane(n, float(s.max()), 0.0, points)
+    b = Plane(-n, -float(s.min()), 0.0, points)
+    return _make_piece(a, b), None

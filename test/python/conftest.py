@@ -89,11 +89,23 @@ def _box(f, ctx, k, sx, sy, sz, x0=0.0, y0=0.0, z0=0.0):
 
 
 def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wall=False,
-                lonely_door=False, external_pset=True, south_external=True):
+                lonely_door=False, external_pset=True, south_external=True, partition="door",
+                window_opening=False, virtual_element=False, curtain_wall=None,
+                storey_elevation=0.0, storey_placement=True, extras=()):
     """Two rooms A (x 0.2..3.9) and B (x 4.1..7.8), y 0.2..3.8, walls 0.2 m thick, 2.6 m high;
     door D_AB in the partition (x 4.0, y 1.0..1.9), door D_out in the south wall of A
     (y 0.1, x 1.0..2.0). Options add a zero-length wall, a door in a free-standing wall far away,
-    drop the spaces or the walls (and doors), use another unit. Returns {name: step id}."""
+    drop the spaces or the walls (and doors), use another unit. partition="opening" leaves D_AB's
+    opening (OP_AB) without its door; "none" drops the partition and its door, and the spaces
+    then meet at x 4.0 (virtual_element adds an IfcVirtualElement V_AB there, bounding both by
+    VIRTUAL space boundaries). window_opening adds an unfilled opening OP_win in B's north wall,
+    sill 1.0 m, 1.2 m high. curtain_wall="panels" replaces the east wall by an IfcCurtainWall
+    CW_east (x 7.8..8.0) of three mullions (IfcMember, 0.1 x 0.2 m) and two glass panels
+    (IfcPlate, 0.02 m thick, in the middle) aggregated to it; "empty" gives it no parts.
+    storey_elevation=None leaves the storey's Elevation unset, storey_placement=False drops its
+    placement. extras: "space_C" adds a space C far from every wall (x 20..23, y 0..3);
+    "orphan_opening" an IfcOpeningElement OP_orphan that voids nothing; "dup_opening" an unfilled
+    opening OP_dup in the partition where door D_AB is. Returns {name: step id}."""
     import ifcopenshell
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -118,15 +130,22 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
         owner_settings.get_application = lambda _f: app
         try:
             return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
-                                     external_pset, south_external)
+                                     external_pset, south_external, partition, window_opening,
+                                     virtual_element, curtain_wall, storey_elevation,
+                                     storey_placement, extras)
         finally:
             owner_settings.get_user, owner_settings.get_application = saved
     return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
-                             external_pset, south_external)
+                             external_pset, south_external, partition, window_opening,
+                             virtual_element, curtain_wall, storey_elevation, storey_placement,
+                             extras)
 
 
 def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, external_pset,
-                      south_external):
+                      south_external, partition="door", window_opening=False,
+                      virtual_element=False, curtain_wall=None, storey_elevation=0.0,
+                      storey_placement=True, extras=()):
+    import ifcopenshell.guid
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
     import ifcopenshell.api.feature
@@ -178,20 +197,48 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
     south = wall("W_south", 0.0, 0.0, 8.0, 0.0, south_external)
     wall("W_north", 8.0, 4.0, 8.0, 180.0, True)
     wall("W_west", 0.0, 4.0, 4.0, -90.0, True)
-    wall("W_east", 8.0, 0.0, 4.0, 90.0, True)
-    part = wall("W_part", 4.1, 0.0, 4.0, 90.0, False)
+    if curtain_wall is None:
+        wall("W_east", 8.0, 0.0, 4.0, 90.0, True)
+    else:
+        cw = ifcopenshell.api.root.create_entity(f, ifc_class="IfcCurtainWall", name="CW_east")
+        _placement(f, cw, 8.0, 0.0, 0.0, 90.0)
+        ifcopenshell.api.spatial.assign_container(f, products=[cw], relating_structure=storey)
+        ids["CW_east"] = cw.id()
+        parts = []
+        if curtain_wall == "panels":
+            for i, x0 in enumerate((0.0, 1.95, 3.9)):
+                parts.append(("IfcMember", f"CW_m{i}", (0.1, 0.2, 2.6, x0, 0.0)))
+            for i, (x0, x1) in enumerate(((0.1, 1.95), (2.05, 3.9))):
+                parts.append(("IfcPlate", f"CW_p{i}", (x1 - x0, 0.02, 2.6, x0, 0.09)))
+        elif curtain_wall == "bent":     # a second panel turned 90 degrees, 1 m deep
+            parts.append(("IfcPlate", "CW_p0", (3.8, 0.02, 2.6, 0.1, 0.09)))
+            parts.append(("IfcPlate", "CW_p1", (0.02, 1.0, 2.6, 3.9, 0.0)))
+        for cls, name, (sx, sy, sz, x0, y0) in parts:
+            p = ifcopenshell.api.root.create_entity(f, ifc_class=cls, name=name)
+            _placement(f, p, 8.0, 0.0, 0.0, 90.0)
+            ifcopenshell.api.geometry.assign_representation(
+                f, product=p, representation=_box(f, body, k, sx, sy, sz, x0, y0))
+            ifcopenshell.api.aggregate.assign_object(f, relating_object=cw, products=[p])
+            ids[name] = p.id()
+    part = wall("W_part", 4.1, 0.0, 4.0, 90.0, False) if partition != "none" else None
     if zero_wall:
         wall("W_zero", 2.0, 2.0, 0.0, 0.0, False)
     lonely = wall("W_lonely", 20.0, 20.0, 3.0, 0.0, False) if lonely_door else None
 
-    def door(name, host, lx, width=0.9, height=2.1):
-        """A door at local x = lx..lx+width of the host wall."""
-        op = ifcopenshell.api.root.create_entity(f, ifc_class="IfcOpeningElement", name=name + "_op")
+    def opening(name, host, lx, width, height, sill=0.0, register=True):
+        op = ifcopenshell.api.root.create_entity(f, ifc_class="IfcOpeningElement", name=name)
         _placement(f, op, 0.0, 0.0)
         ifcopenshell.api.geometry.assign_representation(
-            f, product=op, representation=_box(f, body, k, width, 0.4, height, lx, -0.1, 0.0))
+            f, product=op, representation=_box(f, body, k, width, 0.4, height, lx, -0.1, sill))
         op.ObjectPlacement.PlacementRelTo = host.ObjectPlacement
         ifcopenshell.api.feature.add_feature(f, feature=op, element=host)
+        if register:
+            ids[name] = op.id()
+        return op
+
+    def door(name, host, lx, width=0.9, height=2.1):
+        """A door at local x = lx..lx+width of the host wall."""
+        op = opening(name + "_op", host, lx, width, height, register=False)
         d = ifcopenshell.api.root.create_entity(f, ifc_class="IfcDoor", name=name)
         d.OverallWidth, d.OverallHeight = width * k, height * k
         _placement(f, d, 0.0, 0.0)
@@ -202,7 +249,14 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
         ifcopenshell.api.spatial.assign_container(f, products=[d], relating_structure=storey)
         ids[name] = d.id()
 
-    door("D_AB", part, 1.0)         # partition: local x runs along +y from y=0
+    if partition == "door":
+        door("D_AB", part, 1.0)     # partition: local x runs along +y from y=0
+        if "dup_opening" in extras:
+            opening("OP_dup", part, 1.1, 0.8, 2.1)
+    elif partition == "opening":
+        opening("OP_AB", part, 1.0, 0.9, 2.1)
+    if window_opening:
+        opening("OP_win", f.by_id(ids["W_north"]), 1.5, 1.2, 1.2, sill=1.0)
     door("D_out", south, 1.0, 1.0)
     if not walls:
         for name in [n for n in ids if n.startswith(("W_", "D_"))]:
@@ -210,7 +264,8 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
     if lonely is not None:
         door("D_lonely", lonely, 1.0)
     if spaces:
-        for name, x0, x1 in (("A", 0.2, 3.9), ("B", 4.1, 7.8)):
+        split = (4.0, 4.0) if partition == "none" else (3.9, 4.1)
+        for name, x0, x1 in (("A", 0.2, split[0]), ("B", split[1], 7.8)):
             sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name=name,
                                                      )
             sp.LongName = "Room " + name
@@ -219,6 +274,34 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
             ifcopenshell.api.geometry.assign_representation(
                 f, product=sp, representation=_box(f, body, k, x1 - x0, 3.6, 2.6, x0, 0.2, 0.0))
             ids["space_" + name] = sp.id()
+        if virtual_element:
+            ve = ifcopenshell.api.root.create_entity(f, ifc_class="IfcVirtualElement", name="V_AB")
+            ifcopenshell.api.spatial.assign_container(f, products=[ve], relating_structure=storey)
+            ids["V_AB"] = ve.id()
+            for name in ("A", "B"):
+                f.create_entity("IfcRelSpaceBoundary", GlobalId=ifcopenshell.guid.new(),
+                                RelatingSpace=f.by_id(ids["space_" + name]),
+                                RelatedBuildingElement=ve, PhysicalOrVirtualBoundary="VIRTUAL",
+                                InternalOrExternalBoundary="INTERNAL")
+    if "space_C" in extras:
+        sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name="C")
+        _placement(f, sp, 0.0, 0.0)
+        ifcopenshell.api.aggregate.assign_object(f, relating_object=storey, products=[sp])
+        ifcopenshell.api.geometry.assign_representation(
+            f, product=sp, representation=_box(f, body, k, 3.0, 3.0, 2.6, 20.0, 0.0, 0.0))
+        ids["space_C"] = sp.id()
+    if "orphan_opening" in extras:
+        op = ifcopenshell.api.root.create_entity(f, ifc_class="IfcOpeningElement",
+                                                 name="OP_orphan")
+        _placement(f, op, 0.0, 0.0)
+        ifcopenshell.api.geometry.assign_representation(
+            f, product=op, representation=_box(f, body, k, 1.0, 0.4, 2.1, 2.0, 3.7, 0.0))
+        ids["OP_orphan"] = op.id()
+    if storey_elevation is not None:
+        storey.Elevation = storey_elevation * k
+    if not storey_placement:
+        storey.ObjectPlacement = None
+    ids["storey"] = storey.id()
     f.write(str(path))
     return ids
 

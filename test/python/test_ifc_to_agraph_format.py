@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 TOP_KEYS = ["format", "version", "source", "building", "mesh", "storeys", "wall_surfaces",
-            "walls", "rooms", "doorways", "warnings"]
+            "walls", "rooms", "doorways", "warnings", "report"]
 FIELDS = {
     "storeys": {"id", "ifc_id", "guid", "name", "elevation", "height"},
     "wall_surfaces": {"id", "ifc_id", "guid", "wall", "storey", "normal", "d", "orientation",
@@ -16,7 +16,7 @@ FIELDS = {
     "rooms": {"id", "ifc_id", "guid", "name", "long_name", "storey", "polygon", "z_min", "z_max",
               "center", "area", "surfaces", "walls", "doorways"},
     "doorways": {"id", "ifc_id", "guid", "name", "storey", "wall", "position", "width", "height",
-                 "rooms"},
+                 "rooms", "kind"},
 }
 
 
@@ -44,6 +44,25 @@ def test_schema(graph):
             assert isinstance(e["ifc_id"], int) and isinstance(e["guid"], str)
 
 
+def test_report_counts_what_was_kept(graph):
+    g = graph
+    assert [r["storey"] for r in g["report"]] == [s["id"] for s in g["storeys"]]
+    for r, s in zip(g["report"], g["storeys"]):
+        k = s["id"]
+        assert r["name"] == s["name"]
+        kept = r["kept"]
+        assert kept["wall_pieces"] == sum(1 for w in g["walls"] if w["storey"] == k)
+        assert kept["walls"] == len({w["ifc_id"] for w in g["walls"] if w["storey"] == k})
+        assert kept["wall_surfaces"] == sum(1 for x in g["wall_surfaces"] if x["storey"] == k)
+        assert kept["rooms"] == sum(1 for x in g["rooms"] if x["storey"] == k)
+        assert kept["doorways"] == {kind: sum(1 for d in g["doorways"] if d["storey"] == k
+                                              and d["kind"] == kind)
+                                    for kind in ("door", "opening", "virtual")}
+        for d in r["dropped"]:
+            assert set(d) == {"ifc_class", "reason", "count"} and d["count"] >= 1
+            assert d["ifc_class"].startswith("Ifc") and d["reason"]
+
+
 def test_references_are_consistent(graph):
     g = graph
     ns = len(g["storeys"])
@@ -59,6 +78,9 @@ def test_references_are_consistent(graph):
     for d in g["doorways"]:
         assert 1 <= len(d["rooms"]) <= 2 and len(set(d["rooms"])) == len(d["rooms"])
         assert -1 <= d["wall"] < len(g["walls"])
+        assert d["kind"] in ("door", "opening", "virtual")
+        if d["kind"] == "virtual":
+            assert d["wall"] == -1 and len(d["rooms"]) == 2
         for r in d["rooms"]:
             assert d["id"] in g["rooms"][r]["doorways"]
 

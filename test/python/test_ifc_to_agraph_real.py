@@ -26,7 +26,8 @@ def per_storey(graph):
 
 def door_room_names(graph, use_long_name=True):
     key = "long_name" if use_long_name else "name"
-    return {d["name"]: sorted(graph["rooms"][r][key] for r in d["rooms"]) for d in graph["doorways"]}
+    return {d["name"]: sorted(graph["rooms"][r][key] for r in d["rooms"]) for d in graph["doorways"]
+            if d["kind"] == "door"}
 
 
 def space_boundaries(path):
@@ -89,8 +90,9 @@ def test_fzk_source_and_storeys(fzk):
                                                                    ("Dachgeschoss", 2.7)]
     assert g["storeys"][0]["height"] == pytest.approx(2.7)
     assert g["warnings"] == []
-    # surfaces, walls, rooms, doorways
-    assert per_storey(g) == {"Erdgeschoss": (18, 9, 6, 5), "Dachgeschoss": (8, 4, 1, 0)}
+    # surfaces, walls, rooms, doorways (5 doors and the 3 virtual separations of the open
+    # kitchen, living room and hall)
+    assert per_storey(g) == {"Erdgeschoss": (18, 9, 6, 8), "Dachgeschoss": (8, 4, 1, 0)}
 
 
 def test_fzk_rooms(fzk):
@@ -120,7 +122,7 @@ def test_fzk_doors_connect_the_right_rooms(fzk):
         "Terrassentuer": ["Wohnen"],
     }
     g = fzk.graph
-    host = {d["name"]: g["walls"][d["wall"]]["name"] for d in g["doorways"]}
+    host = {d["name"]: g["walls"][d["wall"]]["name"] for d in g["doorways"] if d["kind"] == "door"}
     assert host == {"Innentuer-1": "Wand-Int-ERDG-2", "Innentuer-2": "Wand-Int-ERDG-3",
                     "Innentuer-3": "Wand-Int-ERDG-3", "Haustuer": "Wand-Ext-ERDG-1",
                     "Terrassentuer": "Wand-Ext-ERDG-4"}
@@ -195,21 +197,25 @@ def test_duplex_storeys_and_counts(duplex):
     assert g["source"]["schema"] == "IFC2X3" and "Revit" in g["source"]["application"]
     assert [(s["name"], s["elevation"]) for s in g["storeys"]] == pytest.approx(
         [("T/FDN", -1.25), ("Level 1", 0.0), ("Level 2", 3.1), ("Roof", 6.0)])
-    assert per_storey(g) == {"T/FDN": (14, 7, 0, 0), "Level 1": (42, 21, 10, 6),
+    # Level 1: 6 doors and 8 virtual separations (each unit's open foyer, living room, kitchen
+    # and stair: both units' spaces have VIRTUAL space boundaries without an element).
+    assert per_storey(g) == {"T/FDN": (14, 7, 0, 0), "Level 1": (42, 21, 10, 14),
                              "Level 2": (50, 25, 10, 8), "Roof": (8, 4, 1, 0)}
     assert g["warnings"] == []
 
 
 def test_duplex_doors(duplex):
     g = duplex.graph
-    conn = {d["ifc_id"]: sorted(g["rooms"][r]["name"] for r in d["rooms"]) for d in g["doorways"]}
+    doors = [d for d in g["doorways"] if d["kind"] == "door"]
+    assert len(doors) == 14
+    conn = {d["ifc_id"]: sorted(g["rooms"][r]["name"] for r in d["rooms"]) for d in doors}
     assert conn[6652] == ["A101"]                 # main entrance, unit A
     assert conn[6757] == ["B101"]
     assert conn[8066] == ["A101", "A104"]         # foyer - bathroom 1
     assert conn[8386] == ["A201", "A203"]         # hallway - bedroom 2 (upstairs, z 3.1)
     assert conn[35413] == ["A204", "A205"]        # bathroom 2 - utility
     f, rsb = space_boundaries(duplex.src)
-    for d in g["doorways"]:
+    for d in doors:
         ours = {g["rooms"][r]["ifc_id"] for r in d["rooms"]}
         # The space boundaries agree, except that #35413 also lists hallway A201 (the door
         # stands between A204 and A205, as its twin #35318 in unit B does).
@@ -228,7 +234,12 @@ def test_duplex_rooms(duplex):
     # The stair space is extruded sideways: its footprint is 1.0144 x 3.75 m over two storeys.
     assert rooms["A105"]["area"] == pytest.approx(3.804, abs=1e-4)
     assert (rooms["A105"]["z_min"], rooms["A105"]["z_max"]) == pytest.approx((0.019, 5.7))
-    assert rooms["A101"]["doorways"] and len(rooms["A103"]["doorways"]) == 0
+    # The kitchen has no door: it is open to the foyer and the living room (virtual doorways).
+    assert rooms["A101"]["doorways"]
+    kitchen = [g["doorways"][d] for d in rooms["A103"]["doorways"]]
+    assert {d["kind"] for d in kitchen} == {"virtual"}
+    assert sorted(g["rooms"][r]["name"] for d in kitchen for r in d["rooms"]
+                  if r != rooms["A103"]["id"]) == ["A101", "A102"]
 
 
 def test_duplex_room_walls_include_space_boundaries(duplex):
