@@ -140,7 +140,7 @@ TEST(PairwiseConsistency, AgreeIsWhetherTheWeightIsPositive) {
     const PointNormal t2{motion.Apply(s2.point) + scale * Eigen::Vector2d(jitter(rng), jitter(rng)),
                          unit(a2 + motion.yaw + scale * jitter(rng))};
     const double tol_angle = 0.28, tol_distance = 0.5;
-    const bool agree = SurfacePairsAgree(s1, s2, t1, t2, tol_angle, tol_distance);
+    const bool agree = SurfacePairsAgree(s1, s2, t1, t2, std::cos(tol_angle), tol_distance);
     ASSERT_EQ(agree, SurfacePairConsistency(s1, s2, t1, t2, tol_angle, tol_distance) > 0.0)
         << "surface trial " << trial;
     agree_s += agree;

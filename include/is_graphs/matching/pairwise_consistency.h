@@ -25,10 +25,10 @@ struct PointNormal {
 double SurfacePairConsistency(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
                               const PointNormal& a2, double angle_tolerance_rad,
                               double distance_tolerance);
-/// SurfacePairConsistency(...) > 0, without the weight's exp (and without the angle where the
-/// distances already disagree).
+/// SurfacePairConsistency(...) > 0 with angle_tolerance_rad = acos(cos_angle_tolerance), without
+/// the weight's exp or an atan2 (the cosine is computed once by the caller, not per pair).
 bool SurfacePairsAgree(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
-                       const PointNormal& a2, double angle_tolerance_rad,
+                       const PointNormal& a2, double cos_angle_tolerance,
                        double distance_tolerance);
 
 /// A room-level correspondence for the pairwise test: its centres and the yaw its local fit

@@ -27,12 +27,13 @@ void PruneInconsistent(const RoomDescriptor& s, const RoomDescriptor& a, double 
                        double distance_tol, std::vector<std::pair<int, int>>& pairs) {
   const size_t n = pairs.size();
   if (n < 2) return;
+  const double cos_angle_tol = std::cos(angle_tol);
   std::vector<char> conflict(n * n, 0);
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j)
       conflict[i * n + j] = conflict[j * n + i] = !SurfacePairsAgree(
           Foot(s, pairs[i].first), Foot(s, pairs[j].first), Foot(a, pairs[i].second),
-          Foot(a, pairs[j].second), angle_tol, distance_tol);
+          Foot(a, pairs[j].second), cos_angle_tol, distance_tol);
   std::vector<int> alive(n);  // indices into the original pairs, in order
   for (size_t i = 0; i < n; ++i) alive[i] = static_cast<int>(i);
   while (alive.size() >= 2) {

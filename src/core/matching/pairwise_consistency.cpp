@@ -67,15 +67,13 @@ double SurfacePairConsistency(const PointNormal& s1, const PointNormal& s2, cons
 }
 
 bool SurfacePairsAgree(const PointNormal& s1, const PointNormal& s2, const PointNormal& a1,
-                       const PointNormal& a2, double angle_tolerance_rad,
+                       const PointNormal& a2, double cos_angle_tolerance,
                        double distance_tolerance) {
   if (!Within(SurfaceDistanceError(s1, s2, a1, a2), distance_tolerance)) return false;
-  if (!(angle_tolerance_rad < M_PI)) return true;
-  // The angle between the two turns within the tolerance, as a cosine (no atan2): their dot
-  // product against cos(tolerance) times their lengths.
+  // The angle between the two turns within the tolerance, as a cosine: their dot product
+  // against the tolerance's cosine times their lengths.
   const Eigen::Vector2d ts = Turn(s1.normal, s2.normal), ta = Turn(a1.normal, a2.normal);
-  return ts.dot(ta) >=
-         std::cos(angle_tolerance_rad) * std::sqrt(ts.squaredNorm() * ta.squaredNorm());
+  return ts.dot(ta) >= cos_angle_tolerance * std::sqrt(ts.squaredNorm() * ta.squaredNorm());
 }
 
 double RoomPairConsistency(const RoomCorrespondence& i, const RoomCorrespondence& j,
