@@ -90,6 +90,7 @@ is_graphs::AGraph ToMsg(const agraph::AGraph& graph) {
     m.width = d.width;
     m.height = d.height;
     m.room_ids = CastIds<uint32_t>(d.rooms);
+    m.kind = static_cast<uint8_t>(d.kind);
     msg.doorways.push_back(m);
   }
   return msg;
@@ -174,6 +175,9 @@ agraph::AGraph FromMsg(const is_graphs::AGraph& msg) {
     d.width = m.width;
     d.height = m.height;
     d.rooms = CastIds<int>(m.room_ids);
+    d.kind = m.kind == is_graphs::Doorway::OPENING   ? agraph::DoorwayKind::kOpening
+             : m.kind == is_graphs::Doorway::VIRTUAL ? agraph::DoorwayKind::kVirtual
+                                                     : agraph::DoorwayKind::kDoor;
     graph.doorways.push_back(d);
   }
   return graph;

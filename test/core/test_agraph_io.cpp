@@ -228,6 +228,50 @@ TEST(AGraphIo, MissingOrientationIsClassified) {
   EXPECT_EQ(loaded.value().surfaces[2].orientation, geometry::Orientation::kX);
 }
 
+// Converter 2 types its doorways (door / opening / virtual) and reports what it dropped; a
+// version-1 file (no kind) holds doors; an unknown kind is an error naming the doorway.
+TEST(AGraphIo, DoorwayKindsAndTheReport) {
+  json j = json::parse(testing::ReadFile(testing::TwoRoomsPath()));
+  ASSERT_GE(j["doorways"].size(), 2u);
+  j["doorways"][0]["kind"] = "virtual";
+  j["doorways"][1]["kind"] = "opening";
+  j["report"] = json::array({{{"storey", 0},
+                              {"name", "Ground Floor"},
+                              {"dropped",
+                               {{{"ifc_class", "IfcVirtualElement"},
+                                 {"reason", "joins spaces on different storeys"},
+                                 {"count", 2}}}}}});
+  const Result<AGraph> loaded = ParseAGraph(j.dump(), "kinds.agraph.json");
+  ASSERT_TRUE(loaded.ok()) << loaded.error();
+  const AGraph& g = loaded.value();
+  EXPECT_EQ(g.doorways[0].kind, DoorwayKind::kVirtual);
+  EXPECT_FALSE(g.doorways[0].InWall());
+  EXPECT_EQ(g.doorways[1].kind, DoorwayKind::kOpening);
+  EXPECT_TRUE(g.doorways[1].InWall());
+  ASSERT_EQ(g.dropped.size(), 1u);
+  EXPECT_EQ(g.dropped[0].ifc_class, "IfcVirtualElement");
+  EXPECT_EQ(g.dropped[0].count, 2);
+  // Through the writer and back: the same kinds and report.
+  const Result<AGraph> again = ParseAGraph(ToJsonText(g), "again.agraph.json");
+  ASSERT_TRUE(again.ok()) << again.error();
+  EXPECT_EQ(again.value().doorways[0].kind, DoorwayKind::kVirtual);
+  EXPECT_EQ(again.value().doorways[1].kind, DoorwayKind::kOpening);
+  ASSERT_EQ(again.value().dropped.size(), 1u);
+  EXPECT_EQ(again.value().dropped[0].reason, "joins spaces on different storeys");
+
+  json v1 = json::parse(testing::ReadFile(testing::TwoRoomsPath()));
+  for (auto& d : v1["doorways"]) d.erase("kind");
+  const Result<AGraph> old = ParseAGraph(v1.dump(), "v1.agraph.json");
+  ASSERT_TRUE(old.ok()) << old.error();
+  for (const auto& d : old.value().doorways) EXPECT_EQ(d.kind, DoorwayKind::kDoor);
+
+  j["doorways"][1]["kind"] = "portal";
+  const Result<AGraph> bad = ParseAGraph(j.dump(), "bad_kind.agraph.json");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().find("doorways[1]"), std::string::npos) << bad.error();
+  EXPECT_NE(bad.error().find("'portal'"), std::string::npos) << bad.error();
+}
+
 TEST(AGraphIo, TextErrors) {
   const std::string dir = testing::ScratchDir("agraph_io_text");
   const Result<AGraph> missing = LoadAGraph(dir + "/absent.agraph.json");

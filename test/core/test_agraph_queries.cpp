@@ -145,10 +145,11 @@ TEST(AGraphQueries, SignedArea) {
 
 TEST(AGraphQueries, Summarize) {
   const std::string summary = Summarize(TwoStoreys());
-  for (const char* expected : {"building: Two Rooms", "storeys:  2", "storey 0 \"Ground Floor\"",
-                               "storey 1 \"First Floor\"", "wall surfaces: 10 (x 6, y 4, other 0)",
-                               "walls:         5", "doorways:      2 (1 to outdoors)",
-                               "rooms:         2", "\"Office A\"  15.60 m^2", "warnings: 1"}) {
+  for (const char* expected :
+       {"building: Two Rooms", "storeys:  2", "storey 0 \"Ground Floor\"",
+        "storey 1 \"First Floor\"", "wall surfaces: 10 (x 6, y 4, other 0)", "walls:         5",
+        "doorways:      2 (2 doors, 0 openings, 0 virtual; 1 to outdoors)", "rooms:         2",
+        "\"Office A\"  15.60 m^2", "warnings: 1"}) {
     EXPECT_NE(summary.find(expected), std::string::npos) << "no \"" << expected << "\" in\n"
                                                          << summary;
   }

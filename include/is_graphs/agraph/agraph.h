@@ -73,8 +73,17 @@ struct Room {
   std::vector<int> doorways;
 };
 
+/// What joins a doorway's rooms (A-Graph file field `kind`): a door (IfcDoor), an opening in a
+/// wall that nothing fills, or a virtual separation (no wall: a space boundary marked VIRTUAL,
+/// an IfcVirtualElement). Files of converter version 1 hold doors only.
+enum class DoorwayKind { kDoor = 0, kOpening = 1, kVirtual = 2 };
+
+/// "door", "opening", "virtual".
+const char* ToString(DoorwayKind kind);
+
 struct Doorway {
   int id{0};
+  DoorwayKind kind{DoorwayKind::kDoor};
   long ifc_id{-1};
   std::string guid;
   std::string name;
@@ -84,6 +93,8 @@ struct Doorway {
   double width{0.0};
   double height{0.0};
   std::vector<int> rooms;  // two, or one for a door to outdoors
+  /// Whether it goes through a wall (a door or an opening; a virtual separation has none).
+  bool InWall() const { return kind != DoorwayKind::kVirtual; }
 };
 
 struct SourceInfo {
@@ -93,6 +104,15 @@ struct SourceInfo {
   std::string application;
   double length_unit_m{1.0};
   std::string converter_version;
+};
+
+/// What the conversion left out of one storey, by IFC class and reason (the file's `report`;
+/// each loss is also named in `warnings`).
+struct ConversionDrop {
+  int storey{0};
+  std::string ifc_class;
+  std::string reason;
+  int count{0};
 };
 
 struct AGraph {
@@ -106,6 +126,7 @@ struct AGraph {
   std::vector<Room> rooms;
   std::vector<Doorway> doorways;
   std::vector<std::string> warnings;
+  std::vector<ConversionDrop> dropped;  // empty for files of converter version 1
 };
 
 }  // namespace agraph

@@ -10,5 +10,17 @@ Eigen::Vector3d WallSurface::Tangent() const {
   return norm > 1e-12 ? Eigen::Vector3d(t / norm) : Eigen::Vector3d::UnitX();
 }
 
+const char* ToString(DoorwayKind kind) {
+  switch (kind) {
+    case DoorwayKind::kOpening:
+      return "opening";
+    case DoorwayKind::kVirtual:
+      return "virtual";
+    case DoorwayKind::kDoor:
+      break;
+  }
+  return "door";
+}
+
 }  // namespace agraph
 }  // namespace is_graphs

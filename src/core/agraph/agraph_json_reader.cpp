@@ -110,6 +110,16 @@ void ReadRoom(const JsonFields& f, Room* r) {
 }
 
 void ReadDoorway(const JsonFields& f, Doorway* d) {
+  const std::string kind = f.StringOr("kind", "door");  // version-1 files: doors only
+  if (kind == "door") {
+    d->kind = DoorwayKind::kDoor;
+  } else if (kind == "opening") {
+    d->kind = DoorwayKind::kOpening;
+  } else if (kind == "virtual") {
+    d->kind = DoorwayKind::kVirtual;
+  } else {
+    f.Fail("kind must be door, opening or virtual, got '" + kind + "'");
+  }
   d->guid = f.StringOr("guid", "");
   d->name = f.StringOr("name", "");
   d->storey = Id(f, "storey");
@@ -174,6 +184,20 @@ void AGraphFromJson(const json& root_json, AGraph* graph) {
   graph->building = root.StringOr("building", "");
   graph->mesh = root.StringOr("mesh", "");
   graph->warnings = root.StringsOr("warnings");
+  if (root.Has("report")) {
+    const json& report = root.Array("report");
+    for (size_t i = 0; i < report.size(); ++i) {
+      const JsonFields entry(report[i], "report[" + std::to_string(i) + "]");
+      const int storey = static_cast<int>(entry.Integer("storey"));
+      if (!entry.Has("dropped")) continue;
+      const json& dropped = entry.Array("dropped");
+      for (size_t k = 0; k < dropped.size(); ++k) {
+        const JsonFields d(dropped[k], entry.label() + ".dropped[" + std::to_string(k) + "]");
+        graph->dropped.push_back({storey, d.StringOr("ifc_class", ""), d.StringOr("reason", ""),
+                                  static_cast<int>(d.IntegerOr("count", 1))});
+      }
+    }
+  }
 
   ReadArray(root, "storeys", "IfcBuildingStorey", ReadStorey, &graph->storeys);
   ReadArray(root, "wall_surfaces", "IfcWall", ReadSurface, &graph->surfaces);

@@ -73,6 +73,7 @@ json ToJson(const Room& r) {
 
 json ToJson(const Doorway& d) {
   json j = Header(d);
+  j["kind"] = ToString(d.kind);
   j["name"] = d.name;
   j["storey"] = d.storey;
   j["wall"] = d.wall;
@@ -110,6 +111,15 @@ json AGraphToJson(const AGraph& graph) {
   root["rooms"] = ArrayToJson(graph.rooms);
   root["doorways"] = ArrayToJson(graph.doorways);
   root["warnings"] = graph.warnings;
+  json report = json::array();
+  for (const Storey& s : graph.storeys) {
+    json dropped = json::array();
+    for (const ConversionDrop& d : graph.dropped)
+      if (d.storey == s.id)
+        dropped.push_back({{"ifc_class", d.ifc_class}, {"reason", d.reason}, {"count", d.count}});
+    report.push_back({{"storey", s.id}, {"name", s.name}, {"dropped", dropped}});
+  }
+  root["report"] = report;
   return root;
 }
 

@@ -56,6 +56,7 @@ std::string Summarize(const AGraph& graph) {
 
   for (const Storey& storey : graph.storeys) {
     int x = 0, y = 0, other = 0, walls = 0, doorways = 0, exterior_doorways = 0;
+    int by_kind[3] = {0, 0, 0};  // door, opening, virtual
     for (const WallSurface& s : graph.surfaces) {
       if (s.storey != storey.id) continue;
       if (s.orientation == geometry::Orientation::kX) {
@@ -70,6 +71,7 @@ std::string Summarize(const AGraph& graph) {
     for (const Doorway& d : graph.doorways) {
       if (d.storey != storey.id) continue;
       ++doorways;
+      ++by_kind[static_cast<int>(d.kind)];
       exterior_doorways += d.rooms.size() == 1;
     }
     std::vector<const Room*> rooms;
@@ -81,7 +83,8 @@ std::string Summarize(const AGraph& graph) {
     out << "  wall surfaces: " << x + y + other << " (x " << x << ", y " << y << ", other " << other
         << ")\n";
     out << "  walls:         " << walls << "\n";
-    out << "  doorways:      " << doorways << " (" << exterior_doorways << " to outdoors)\n";
+    out << "  doorways:      " << doorways << " (" << by_kind[0] << " doors, " << by_kind[1]
+        << " openings, " << by_kind[2] << " virtual; " << exterior_doorways << " to outdoors)\n";
     out << "  rooms:         " << rooms.size() << "\n";
     for (const Room* r : rooms) {
       out << "    " << std::setw(3) << r->id << "  " << r->name;
@@ -89,6 +92,9 @@ std::string Summarize(const AGraph& graph) {
       out << "  " << r->area << " m^2, " << r->surfaces.size() << " surfaces, "
           << r->doorways.size() << " doorways\n";
     }
+    for (const ConversionDrop& d : graph.dropped)
+      if (d.storey == storey.id)
+        out << "  dropped:       " << d.count << " " << d.ifc_class << " (" << d.reason << ")\n";
   }
   out << "warnings: " << graph.warnings.size() << "\n";
   return out.str();

@@ -54,7 +54,9 @@ DoorwayEvidence::DoorwayEvidence(const agraph::AGraph& graph, const MatcherConfi
       width_tolerance_(config.doorway_width_tolerance),
       cell_(std::max(1.0, config.doorway_tolerance)) {
   for (const auto& d : graph.doorways) {
-    if (!d.position.allFinite() || !std::isfinite(d.width)) continue;
+    // The S-Graph finds a doorway where the walk goes through a wall plane: never at a virtual
+    // separation (no wall there).
+    if (!d.InWall() || !d.position.allFinite() || !std::isfinite(d.width)) continue;
     Storey& st = storeys_[d.storey];
     const Eigen::Vector2d at = d.position.head<2>();
     st.cells[CellKey(static_cast<long long>(std::floor(at.x() / cell_)),

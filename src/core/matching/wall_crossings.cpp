@@ -85,7 +85,8 @@ WallCrossings::WallCrossings(const agraph::AGraph& graph, double door_margin, do
     }
   }
   for (const auto& d : graph.doorways) {
-    if (!d.position.allFinite() || !std::isfinite(d.width)) continue;
+    // A virtual separation is no gap in a wall: walls near it are walls.
+    if (!d.InWall() || !d.position.allFinite() || !std::isfinite(d.width)) continue;
     storeys_[d.storey].doors.push_back({d.position.head<2>(),
                                         0.5 * std::max(d.width, 0.0) + door_margin,
                                         0.5 * std::max(d.width, 0.0) + sight_margin});
