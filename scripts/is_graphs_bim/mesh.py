@@ -6,8 +6,24 @@ import numpy as np
 import ifcopenshell
 import ifcopenshell.geom
 
-# Not written to the mesh (spaces are air, openings are already cut out of their walls).
-NOT_IN_MESH = ("IfcSpace", "IfcOpeningElement")
+# Not written to the mesh, with their subtypes: spaces and other spatial elements are air (IFC4's
+# IfcExternalSpatialElement is a box around the whole site, IfcSpatialZone a volume), openings
+# are already cut out of their walls (IFC4's IfcOpeningStandardCase too), virtual elements are
+# no matter. Seen in KIT-EDC_with_SB.ifc: both IFC4 subtypes were in the mesh, the site box
+# around the building and every door's opening solid across its doorway.
+NOT_IN_MESH = ("IfcSpatialElement", "IfcSpatialStructureElement", "IfcSpace",
+               "IfcOpeningElement", "IfcVirtualElement")
+
+
+def in_mesh(entity):
+    """Whether an element's body belongs in the building mesh (not air, not a hole)."""
+    for ifc_class in NOT_IN_MESH:
+        try:
+            if entity.is_a(ifc_class):
+                return False
+        except Exception:  # a class the file's schema does not have (IFC2X3: IfcSpatialElement)
+            continue
+    return True
 
 
 @dataclass
@@ -17,6 +33,7 @@ class Shape:
     ifc_class: str
     verts: np.ndarray   # (N, 3) float64
     faces: np.ndarray   # (M, 3) int64
+    solid: bool = True  # written to the mesh (in_mesh: not a space, opening or virtual element)
 
     def triangle_normals_areas(self):
         """(unit normals (M,3), areas (M,), centroids (M,3)) of the triangles."""
@@ -62,7 +79,7 @@ def triangulate(model, force_metres=False):
         if len(faces):
             verts = np.asarray(geom.verts, dtype=np.float64).reshape(-1, 3)
             entity = model.file.by_id(shape.id)
-            shapes[shape.id] = Shape(shape.id, entity.is_a(), verts, faces)
+            shapes[shape.id] = Shape(shape.id, entity.is_a(), verts, faces, in_mesh(entity))
         if not it.next():
             break
     return shapes
@@ -81,7 +98,7 @@ def write_obj(path, shapes, header=""):
     base = 1
     for sid in sorted(shapes):
         shape = shapes[sid]
-        if shape.ifc_class in NOT_IN_MESH:
+        if not shape.solid:
             continue
         lines.append(f"o {shape.ifc_class}#{sid}")
         v = np.round(shape.verts, 6) + 0.0

@@ -125,6 +125,25 @@ TEST(AlignPositionsYaw, FlatWalkWithBobStaysLevel) {
   EXPECT_NEAR((yaw.translation() - Vector3d(4, 5, 0)).norm(), 0.0, 0.02);
 }
 
+// A robot that has not walked yet (one keyframe, or turning on the spot): the positions do not
+// fix the yaw, the headings do. replay_pipeline's audit called D9's right first match (at the
+// first keyframe, from the hall alone) wrong by 58 deg: it took yaw 0 for the truth.
+TEST(AlignPositionsYaw, StandingStillTakesTheYawFromTheHeadings) {
+  const Eigen::Isometry3d motion(Eigen::Translation3d(-2.7, 0.7, 0) *
+                                 Eigen::AngleAxisd(1.0, Vector3d::UnitZ()));
+  std::vector<Vector3d> estimate{Vector3d(0.1, 0.0, 0.5)}, truth{motion * estimate[0]};
+  const std::vector<double> estimate_yaw{0.2}, truth_yaw{1.2};
+  EXPECT_NEAR(Eigen::AngleAxisd(AlignPositionsYaw(estimate, truth).linear()).angle(), 0.0, 1e-12);
+  const Eigen::Isometry3d t = AlignPositionsYaw(estimate, truth, estimate_yaw, truth_yaw);
+  EXPECT_NEAR(Eigen::AngleAxisd(t.linear()).angle(), 1.0, 1e-12);
+  EXPECT_NEAR((t * estimate[0] - truth[0]).norm(), 0.0, 1e-12);
+  // Turning on the spot, 3 cm of sway: still the headings.
+  estimate.push_back(Vector3d(0.13, 0.02, 0.5));
+  truth.push_back(motion * estimate[1]);
+  const Eigen::Isometry3d turned = AlignPositionsYaw(estimate, truth, {0.2, 1.7}, {1.2, 2.7});
+  EXPECT_NEAR(Eigen::AngleAxisd(turned.linear()).angle(), 1.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace sgraph
 }  // namespace is_graphs

@@ -29,8 +29,13 @@ Eigen::Isometry3d AlignPositions(const std::vector<Eigen::Vector3d>& estimate,
 /// for two gravity-aligned frames (the S-Graph's map and the BIM are both z-up). A 6-DoF fit of
 /// the nearly planar trajectory of a walking robot leaves roll and pitch to the centimetre bob
 /// of its gait, and a few degrees of tilt there would tilt every aligned wall by as much.
+/// Where the positions do not fix the yaw (one keyframe, or all within 0.5 m: a robot that has
+/// only turned on the spot), it comes from the headings `estimate_yaw` and `truth_yaw` (rad,
+/// each pair's difference averaged on the circle) when they are given; else it is 0.
 Eigen::Isometry3d AlignPositionsYaw(const std::vector<Eigen::Vector3d>& estimate,
-                                    const std::vector<Eigen::Vector3d>& truth);
+                                    const std::vector<Eigen::Vector3d>& truth,
+                                    const std::vector<double>& estimate_yaw = {},
+                                    const std::vector<double>& truth_yaw = {});
 
 struct TrajectoryError {
   int keyframes{0};

@@ -70,7 +70,9 @@ Eigen::Isometry3d AlignPositions(const std::vector<Eigen::Vector3d>& estimate,
 }
 
 Eigen::Isometry3d AlignPositionsYaw(const std::vector<Eigen::Vector3d>& estimate,
-                                    const std::vector<Eigen::Vector3d>& truth) {
+                                    const std::vector<Eigen::Vector3d>& truth,
+                                    const std::vector<double>& estimate_yaw,
+                                    const std::vector<double>& truth_yaw) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   if (estimate.empty() || estimate.size() != truth.size()) return t;
   Eigen::Vector3d mean_e = Eigen::Vector3d::Zero(), mean_t = Eigen::Vector3d::Zero();
@@ -84,7 +86,19 @@ Eigen::Isometry3d AlignPositionsYaw(const std::vector<Eigen::Vector3d>& estimate
     cos_sum += e.dot(g);
     sin_sum += e.x() * g.y() - e.y() * g.x();
   }
-  const double yaw = estimate.size() >= 2 ? std::atan2(sin_sum, cos_sum) : 0.0;
+  double spread = 0.0;
+  for (const auto& e : estimate) spread = std::max(spread, (e - mean_e).head<2>().norm());
+  double yaw = estimate.size() >= 2 ? std::atan2(sin_sum, cos_sum) : 0.0;
+  if (spread < 0.5 && estimate_yaw.size() == estimate.size() &&
+      truth_yaw.size() == estimate.size()) {
+    // Too little walked to tell the yaw from the positions: the headings tell it.
+    double s = 0.0, c = 0.0;
+    for (size_t i = 0; i < estimate.size(); ++i) {
+      s += std::sin(truth_yaw[i] - estimate_yaw[i]);
+      c += std::cos(truth_yaw[i] - estimate_yaw[i]);
+    }
+    yaw = std::atan2(s, c);
+  }
   t.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   t.translation() = mean_t - t.linear() * mean_e;
   return t;
@@ -93,20 +107,27 @@ Eigen::Isometry3d AlignPositionsYaw(const std::vector<Eigen::Vector3d>& estimate
 TrajectoryError EvaluateTrajectory(const SGraph& graph, const std::vector<StampedPose>& truth) {
   TrajectoryError e;
   std::vector<Eigen::Vector3d> est, odom, gt;
+  std::vector<double> est_yaw, odom_yaw, gt_yaw;
+  auto yaw_of = [](const Eigen::Isometry3d& p) {
+    return std::atan2(p.linear()(1, 0), p.linear()(0, 0));
+  };
   for (const auto& k : graph.keyframes) {
     const auto t = TruthAt(truth, k.stamp);
     if (!t) continue;
     est.push_back(k.pose.translation());
     odom.push_back(k.odom_pose.translation());
     gt.push_back(t->translation());
+    est_yaw.push_back(yaw_of(k.pose));
+    odom_yaw.push_back(yaw_of(k.odom_pose));
+    gt_yaw.push_back(yaw_of(*t));
   }
   e.keyframes = static_cast<int>(est.size());
   e.bim_T_map = AlignPositions(est, gt);
   e.sgraph_rmse = Rmse(est, gt, e.bim_T_map);
   e.odom_rmse = Rmse(odom, gt, AlignPositions(odom, gt));
-  e.bim_T_map_gravity = AlignPositionsYaw(est, gt);
+  e.bim_T_map_gravity = AlignPositionsYaw(est, gt, est_yaw, gt_yaw);
   e.sgraph_rmse_gravity = Rmse(est, gt, e.bim_T_map_gravity);
-  e.odom_rmse_gravity = Rmse(odom, gt, AlignPositionsYaw(odom, gt));
+  e.odom_rmse_gravity = Rmse(odom, gt, AlignPositionsYaw(odom, gt, odom_yaw, gt_yaw));
   return e;
 }
 

@@ -152,7 +152,12 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
       cls = bim.ObjectClass(object);
       ifc_id = IfcIdOfObject(bim.object_names[object]);
     }
-    if (drop.count(cls)) continue;
+    // IFC4's "...StandardCase" subtypes (IfcDoorStandardCase) are dropped with their class.
+    const std::string suffix = "StandardCase";
+    const bool standard_case = cls.size() > suffix.size() &&
+                               cls.compare(cls.size() - suffix.size(), suffix.size(), suffix) == 0;
+    if (drop.count(cls) || (standard_case && drop.count(cls.substr(0, cls.size() - suffix.size()))))
+      continue;
     const bool is_wall = cls.rfind("IfcWall", 0) == 0;
     if (is_wall && removed.count(ifc_id)) continue;
     Eigen::Vector3d shift = Eigen::Vector3d::Zero();
