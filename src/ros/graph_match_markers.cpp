@@ -16,6 +16,26 @@ visualization_msgs::Marker Make(const GraphMatchMarkerStyle& style, const std::s
   return MakeMarker(style.frame_id, ns, type, scale, colour);
 }
 
+/// A line from A-surface `a_id`'s middle to the point of S-plane `s_id` (moved into B by
+/// `bim_T_map`, then by `lift`) nearest it: extents may be split or merged differently, the
+/// planes are what was matched. False (nothing added) for an unknown id or a non-finite point.
+bool AddSurfaceLine(int a_id, int s_id, const agraph::AGraph& a_graph,
+                    const std::map<int, const sgraph::Plane*>& s_planes,
+                    const Eigen::Isometry3d& bim_T_map, const Eigen::Vector3d& lift,
+                    visualization_msgs::Marker* marker) {
+  const auto s = s_planes.find(s_id);
+  if (a_id < 0 || a_id >= static_cast<int>(a_graph.surfaces.size()) || s == s_planes.end())
+    return false;
+  const auto& a = a_graph.surfaces[a_id];
+  const Eigen::Vector2d mid = 0.5 * (a.start + a.end);
+  const Eigen::Vector3d a_point(mid.x(), mid.y(), 0.5 * (a.z_min + a.z_max));
+  const Eigen::Vector3d s_point = s->second->plane.Transformed(bim_T_map).Project(a_point) + lift;
+  if (!s_point.allFinite() || !a_point.allFinite()) return false;
+  marker->points.push_back(ToPoint(a_point));
+  marker->points.push_back(ToPoint(s_point));
+  return true;
+}
+
 }  // namespace
 
 visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatch& match,
@@ -53,20 +73,8 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
 
   auto surfaces = Make(style, "surface_pairs", visualization_msgs::Marker::LINE_LIST,
                        Rgba(colour.r, colour.g, colour.b, 0.6f), style.line_width);
-  for (const auto& p : match.surface_pairs) {
-    const auto s = s_planes.find(p.s_id);
-    if (p.a_id < 0 || p.a_id >= static_cast<int>(a_graph.surfaces.size()) || s == s_planes.end())
-      continue;
-    const auto& a = a_graph.surfaces[p.a_id];
-    const Eigen::Vector2d mid = 0.5 * (a.start + a.end);
-    const Eigen::Vector3d a_point(mid.x(), mid.y(), 0.5 * (a.z_min + a.z_max));
-    // The S-plane's point nearest the A-surface's middle (extents may be split or merged).
-    const geometry::Plane s_in_bim = s->second->plane.Transformed(t);
-    const Eigen::Vector3d s_point = s_in_bim.Project(a_point) + lift;
-    if (!s_point.allFinite() || !a_point.allFinite()) continue;
-    surfaces.points.push_back(ToPoint(a_point));
-    surfaces.points.push_back(ToPoint(s_point));
-  }
+  for (const auto& p : match.surface_pairs)
+    AddSurfaceLine(p.a_id, p.s_id, a_graph, s_planes, t, lift, &surfaces);
 
   auto doorways = Make(style, "doorway_pairs", visualization_msgs::Marker::LINE_LIST, colour,
                        2.0 * style.line_width);
@@ -87,18 +95,8 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
   // BIM frame itself (not lifted), magenta.
   auto deviations = Make(style, "deviations", visualization_msgs::Marker::LINE_LIST,
                          Rgba(0.9f, 0.1f, 0.9f), 3.0 * style.line_width);
-  for (const auto& d : match.deviations) {
-    const auto s = s_planes.find(d.s_id);
-    if (d.a_id < 0 || d.a_id >= static_cast<int>(a_graph.surfaces.size()) || s == s_planes.end())
-      continue;
-    const auto& a = a_graph.surfaces[d.a_id];
-    const Eigen::Vector2d mid = 0.5 * (a.start + a.end);
-    const Eigen::Vector3d a_point(mid.x(), mid.y(), 0.5 * (a.z_min + a.z_max));
-    const Eigen::Vector3d s_point = s->second->plane.Transformed(t).Project(a_point);
-    if (!s_point.allFinite() || !a_point.allFinite()) continue;
-    deviations.points.push_back(ToPoint(a_point));
-    deviations.points.push_back(ToPoint(s_point));
-  }
+  for (const auto& d : match.deviations)
+    AddSurfaceLine(d.a_id, d.s_id, a_graph, s_planes, t, Eigen::Vector3d::Zero(), &deviations);
 
   auto text = Make(style, "status", visualization_msgs::Marker::TEXT_VIEW_FACING, colour, 0.8);
   Eigen::Vector3d text_at = Eigen::Vector3d::Zero();

@@ -4,6 +4,7 @@
 #include "../../src/ros/agraph_conversions.h"
 #include "../../src/ros/cloud_conversions.h"
 #include "../../src/ros/graph_match_conversions.h"
+#include "../../src/ros/graph_match_markers.h"
 #include "../../src/ros/sgraph_conversions.h"
 #include "is_graphs/agraph/agraph_io.h"
 
@@ -174,6 +175,44 @@ TEST(GraphMatchConversions, RoundTripKeepsPairsAndDeviations) {
     EXPECT_DOUBLE_EQ(b.deviations[i].angle, a.deviations[i].angle);
     EXPECT_EQ(b.deviations[i].paired, a.deviations[i].paired);
   }
+}
+
+// A wall off the plan is drawn in the BIM frame (not lifted): from the A-surface's middle to
+// the S-plane, magenta, in its own namespace; surface pairs lifted by s_graph_lift.
+TEST(GraphMatchMarkers, DeviationsFromThePlannedFaceToTheBuiltOne) {
+  agraph::AGraph a;
+  agraph::WallSurface face;
+  face.plane = geometry::Plane(Eigen::Vector3d::UnitX(), 2.0);  // x = 2
+  face.start = {2.0, 4.0};
+  face.end = {2.0, 0.0};
+  face.z_max = 2.0;
+  a.surfaces.push_back(face);
+  sgraph::SGraph s;
+  sgraph::Plane built;
+  built.id = 7;
+  built.plane = geometry::Plane(Eigen::Vector3d::UnitX(), 2.3);  // built 0.3 m into the room
+  s.planes.push_back(built);
+  matching::GraphMatch m;
+  m.status = matching::MatchStatus::kUnique;
+  m.surface_pairs = {{0, 7, 0.1}};
+  m.deviations = {{0, 7, 0.3, 0.0, true}, {5, 7, 0.3, 0.0, false}};  // the second: unknown face
+  ros_markers::GraphMatchMarkerStyle style;
+  const auto array = ros_markers::BuildGraphMatchMarkers(m, a, s, style);
+  const visualization_msgs::Marker* deviations = nullptr;
+  const visualization_msgs::Marker* surfaces = nullptr;
+  for (const auto& marker : array.markers) {
+    if (marker.ns == "deviations") deviations = &marker;
+    if (marker.ns == "surface_pairs") surfaces = &marker;
+  }
+  ASSERT_NE(deviations, nullptr);
+  ASSERT_EQ(deviations->points.size(), 2u);  // the unknown face is left out
+  EXPECT_DOUBLE_EQ(deviations->points[0].x, 2.0);
+  EXPECT_DOUBLE_EQ(deviations->points[0].y, 2.0);
+  EXPECT_DOUBLE_EQ(deviations->points[1].x, 2.3);
+  EXPECT_DOUBLE_EQ(deviations->points[1].z, 1.0);  // not lifted
+  ASSERT_NE(surfaces, nullptr);
+  ASSERT_EQ(surfaces->points.size(), 2u);
+  EXPECT_DOUBLE_EQ(surfaces->points[1].z, 1.0 + style.s_graph_lift);
 }
 
 TEST(CloudConversions, RoundTripDropsNothingFinite) {
