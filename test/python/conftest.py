@@ -297,6 +297,13 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
         ifcopenshell.api.geometry.assign_representation(
             f, product=op, representation=_box(f, body, k, 1.0, 0.4, 2.1, 2.0, 3.7, 0.0))
         ids["OP_orphan"] = op.id()
+    if "space_low" in extras:       # a space 5 m below its storey (x 20..23, y 0..3)
+        sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name="L")
+        _placement(f, sp, 0.0, 0.0)
+        ifcopenshell.api.aggregate.assign_object(f, relating_object=storey, products=[sp])
+        ifcopenshell.api.geometry.assign_representation(
+            f, product=sp, representation=_box(f, body, k, 3.0, 3.0, 2.6, 20.0, 0.0, -5.0))
+        ids["space_low"] = sp.id()
     if "space_no_body" in extras:
         sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name="N")
         _placement(f, sp, 0.0, 0.0)

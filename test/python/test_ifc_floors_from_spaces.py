@@ -184,3 +184,23 @@ def test_hole_cut_in_the_slab_counts_as_covered(make_house, run_converter, tmp_p
     assert areas[normals[:, 2] > 0.9].sum() == pytest.approx(8 * 4 - 9, rel=1e-3)  # hole cut
     assert not _floor_objects(str(tmp_path / "h.obj"))
     assert g["report"][0]["kept"]["floors_from_spaces"] == 0
+
+
+def test_space_far_below_its_storey_gets_its_floor_at_the_storey_elevation(make_house,
+                                                                           run_converter,
+                                                                           tmp_path):
+    """Space L's bottom (z -5) is more than 1 m below its storey (z 0): unusable, so its floor
+    is made at the storey's elevation, and a warning names it."""
+    path, ids = make_house(floor_slab=False, extras=("space_low",), storey_elevation=0.0)
+    g, _, _ = _convert(run_converter, path, tmp_path / "h")
+    floors = _floor_objects(str(tmp_path / "h.obj"))
+    assert sorted(floors) == sorted([ids["space_A"], ids["space_B"], ids["space_low"]])
+    verts, faces = floors[ids["space_low"]]
+    assert np.allclose(verts[np.unique(faces), 2], 0.0)
+    assert _tri_areas_normals(verts, faces)[0].sum() == pytest.approx(9.0, rel=1e-6)
+    for sid in (ids["space_A"], ids["space_B"]):
+        assert np.allclose(floors[sid][0][np.unique(floors[sid][1]), 2], 0.0)
+    hits = [w for w in g["warnings"] if w.startswith(f"IfcSpace #{ids['space_low']}: ")
+            and "unusable" in w and "z = 0.000 m" in w]
+    assert len(hits) == 1, g["warnings"]
+    assert any("under 3 of its 3 space(s)" in w for w in g["warnings"]), g["warnings"]
