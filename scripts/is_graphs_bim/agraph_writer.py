@@ -99,7 +99,8 @@ def report(result, storeys, surfaces, walls, rooms, doorways):
             "storey": k, "name": s["name"],
             "kept": {"walls": len({w["ifc_id"] for w in walls if w["storey"] == k}),
                      "wall_pieces": count(walls), "wall_surfaces": count(surfaces),
-                     "rooms": count(rooms), "doorways": kinds},
+                     "rooms": count(rooms), "doorways": kinds,
+                     "floors_from_spaces": result.made_floors.per_storey.get(k, 0)},
             "dropped": [{"ifc_class": cls, "reason": why, "count": n}
                         for (cls, why), n in dropped]})
     return out
@@ -131,7 +132,8 @@ def write(result, out_prefix):
     graph = build(result, mesh_name)
     tmp_obj, tmp_json = obj_path + ".part", json_path + ".part"
     mesh.write_obj(tmp_obj, result.shapes,
-                   header=f"from {graph['source']['file']} sha256 {graph['source']['sha256']}")
+                   header=f"from {graph['source']['file']} sha256 {graph['source']['sha256']}",
+                   extra=result.made_floors.shapes)
     os.replace(tmp_obj, obj_path)
     with open(tmp_json, "w", encoding="utf-8", newline="\n") as fh:
         fh.write(dumps(graph))
@@ -156,6 +158,9 @@ def summary_lines(graph):
         kinds = rep["kept"]["doorways"]
         if kinds.get("opening") or kinds.get("virtual"):
             lines.append("    doorways: " + ", ".join(f"{kinds.get(k, 0)} {k}" for k in KINDS))
+        if rep["kept"].get("floors_from_spaces"):
+            lines.append(f"    floors from spaces: {rep['kept']['floors_from_spaces']} (no slab "
+                         "under them: their footprints added to the mesh as floors)")
         for d in rep["dropped"]:
             lines.append(f"    dropped: {d['count']} {d['ifc_class']}: {d['reason']}")
     return lines

@@ -4,7 +4,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import boundaries, doors, ifc_model, mesh, openings, spaces, walls
+from . import boundaries, doors, floors, ifc_model, mesh, openings, spaces, walls
+from .floors import Floors
 
 
 @dataclass
@@ -26,6 +27,7 @@ class Result:
     shapes: dict            # {step id: mesh.Shape}
     warnings: list
     dropped: dict = field(default_factory=dict)   # {storey: Counter({(IfcClass, reason): n})}
+    made_floors: Floors = field(default_factory=Floors)   # made from spaces (issue 24)
 
 
 class Tally:
@@ -426,8 +428,9 @@ def convert(path, diag):
     door_list += _convert_openings(model, shapes, wall_list, rooms, sidx, door_list, diag, tally)
     door_list += _convert_virtual(model, shapes, rooms, sidx, door_list, diag, tally)
     doorways = _number_doorways(door_list, rooms)
+    made = floors.make_floors(model, shapes, rooms, storeys, sidx, diag)
     return Result(model, _storey_heights(storeys, wall_list), wall_list, rooms, doorways,
-                  shapes, diag.warnings, dict(tally.dropped))
+                  shapes, diag.warnings, dict(tally.dropped), made)
 
 
 def surface_rooms(result):

@@ -90,17 +90,16 @@ def _fmt(x):
     return "0.000000" if s == "-0.000000" else s
 
 
-def write_obj(path, shapes, header=""):
-    """Writes every shape but spaces and openings, sorted by STEP id, one `o` per element."""
+def write_obj(path, shapes, header="", extra=()):
+    """Writes every shape but spaces and openings, sorted by STEP id, one `o` per element; then
+    the `extra` shapes (floors made from spaces) in their order, as `o <ifc_class>#<id>`."""
     lines = ["# is_graphs building mesh: metres, bim frame, z up; one object per IFC element"]
     if header:
         lines.append(f"# {header}")
     base = 1
-    for sid in sorted(shapes):
-        shape = shapes[sid]
-        if not shape.solid:
-            continue
-        lines.append(f"o {shape.ifc_class}#{sid}")
+    todo = [shapes[sid] for sid in sorted(shapes) if shapes[sid].solid]
+    for shape in todo + list(extra):
+        lines.append(f"o {shape.ifc_class}#{shape.id}")
         v = np.round(shape.verts, 6) + 0.0
         lines.extend(f"v {_fmt(x)} {_fmt(y)} {_fmt(z)}" for x, y, z in v.tolist())
         f = shape.faces + base

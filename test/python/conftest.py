@@ -91,7 +91,7 @@ def _box(f, ctx, k, sx, sy, sz, x0=0.0, y0=0.0, z0=0.0):
 def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wall=False,
                 lonely_door=False, external_pset=True, south_external=True, partition="door",
                 window_opening=False, virtual_element=False, curtain_wall=None,
-                storey_elevation=0.0, storey_placement=True, extras=()):
+                storey_elevation=0.0, storey_placement=True, extras=(), floor_slab=True):
     """Two rooms A (x 0.2..3.9) and B (x 4.1..7.8), y 0.2..3.8, walls 0.2 m thick, 2.6 m high;
     door D_AB in the partition (x 4.0, y 1.0..1.9), door D_out in the south wall of A
     (y 0.1, x 1.0..2.0). Options add a zero-length wall, a door in a free-standing wall far away,
@@ -132,19 +132,19 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
             return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
                                      external_pset, south_external, partition, window_opening,
                                      virtual_element, curtain_wall, storey_elevation,
-                                     storey_placement, extras)
+                                     storey_placement, extras, floor_slab=floor_slab)
         finally:
             owner_settings.get_user, owner_settings.get_application = saved
     return _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door,
                              external_pset, south_external, partition, window_opening,
                              virtual_element, curtain_wall, storey_elevation, storey_placement,
-                             extras)
+                             extras, floor_slab=floor_slab)
 
 
 def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, external_pset,
                       south_external, partition="door", window_opening=False,
                       virtual_element=False, curtain_wall=None, storey_elevation=0.0,
-                      storey_placement=True, extras=()):
+                      storey_placement=True, extras=(), floor_slab=True):
     import ifcopenshell.guid
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -297,6 +297,38 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
         ifcopenshell.api.geometry.assign_representation(
             f, product=op, representation=_box(f, body, k, 1.0, 0.4, 2.1, 2.0, 3.7, 0.0))
         ids["OP_orphan"] = op.id()
+    if "space_low" in extras:       # a space 5 m below its storey (x 20..23, y 0..3)
+        sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name="L")
+        _placement(f, sp, 0.0, 0.0)
+        ifcopenshell.api.aggregate.assign_object(f, relating_object=storey, products=[sp])
+        ifcopenshell.api.geometry.assign_representation(
+            f, product=sp, representation=_box(f, body, k, 3.0, 3.0, 2.6, 20.0, 0.0, -5.0))
+        ids["space_low"] = sp.id()
+    if "space_no_body" in extras:
+        sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name="N")
+        _placement(f, sp, 0.0, 0.0)
+        ifcopenshell.api.aggregate.assign_object(f, relating_object=storey, products=[sp])
+        ids["space_no_body"] = sp.id()
+    if walls and floor_slab:
+        covering = floor_slab == "covering"
+        slab = ifcopenshell.api.root.create_entity(
+            f, ifc_class="IfcCovering" if covering else "IfcSlab",
+            predefined_type="FLOORING" if covering else "FLOOR", name="S_floor")
+        _placement(f, slab, 0.0, 0.0)
+        length = 4.0 if floor_slab == "A" else 23.0 if "space_C" in extras else 8.0
+        ifcopenshell.api.geometry.assign_representation(
+            f, product=slab, representation=_box(f, body, k, length, 4.0, 0.2, 0.0, 0.0, -0.2))
+        ifcopenshell.api.spatial.assign_container(f, products=[slab], relating_structure=storey)
+        ids["S_floor"] = slab.id()
+        if floor_slab == "hole":        # a stair hole in room B: x 4.5..7.5, y 0.5..3.5
+            op = ifcopenshell.api.root.create_entity(f, ifc_class="IfcOpeningElement",
+                                                     name="OP_floor")
+            _placement(f, op, 0.0, 0.0)
+            ifcopenshell.api.geometry.assign_representation(
+                f, product=op, representation=_box(f, body, k, 3.0, 3.0, 0.4, 4.5, 0.5, -0.3))
+            op.ObjectPlacement.PlacementRelTo = slab.ObjectPlacement
+            ifcopenshell.api.feature.add_feature(f, feature=op, element=slab)
+            ids["OP_floor"] = op.id()
     if storey_elevation is not None:
         storey.Elevation = storey_elevation * k
     if not storey_placement:

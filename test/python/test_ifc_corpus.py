@@ -217,3 +217,19 @@ def test_nothing_lost_silently(converted):
         if m and m.group(1) != "IfcSIUnit":
             assert "[GlobalId " in w, w
         assert f"warning: {name}: {w}" in stderr
+
+
+def test_floors_from_spaces_only_where_no_slab(converted):
+    """Issue 24, "IfcSlab missing": every space of the six described files stands on an IfcSlab
+    (or in a hole cut in one: Smiley West's ground-floor halls over the cellar stairs, 47 % on the
+    slab, the rest in its stair opening; duplex's "Roof" space on the roof slab 0.46 m above its
+    bottom), so none gets a floor made from its footprint. For any other file, a storey's count
+    and its warning go together."""
+    name, graph, _ = converted
+    for rep, s in zip(graph["report"], graph["storeys"]):
+        n = rep["kept"]["floors_from_spaces"]
+        if name in EXPECTED:
+            assert n == 0, (name, s["name"])
+        warned = [w for w in graph["warnings"] if w.startswith(f"IfcBuildingStorey #{s['ifc_id']}:")
+                  and "no IfcSlab or IfcCovering FLOORING under" in w]
+        assert len(warned) == (1 if n else 0), (name, s["name"], warned)

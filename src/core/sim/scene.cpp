@@ -172,10 +172,13 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
       return Eigen::Vector3d(q.x(), q.y(), p.z()) + shift;
     };
     if (is_wall) seen_walls.insert(ifc_id);
-    const float refl =
-        static_cast<float>(is_wall                                  ? config.wall_reflectivity
-                           : (cls == "IfcSlab" || cls == "IfcSite") ? config.floor_reflectivity
-                                                                    : 0.4);
+    // Floors: slabs (with IFC4's IfcSlabStandardCase / ElementedCase), the site, and the floors
+    // the converter makes from space footprints where a storey has no slab.
+    const bool is_floor =
+        cls.rfind("IfcSlab", 0) == 0 || cls == "IfcSite" || cls == "FloorFromSpace";
+    const float refl = static_cast<float>(is_wall    ? config.wall_reflectivity
+                                          : is_floor ? config.floor_reflectivity
+                                                     : 0.4);
     const Eigen::Vector3i& tri = bim.triangles[t];
     scene.AddTriangle(built(bim.vertices[tri[0]]), built(bim.vertices[tri[1]]),
                       built(bim.vertices[tri[2]]), refl);
