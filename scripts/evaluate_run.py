@@ -116,6 +116,7 @@ def main():
           f"{numbers['distance_to_localize_m']:.1f} m walked")
     print(f"APE (evo, no alignment, {numbers['poses_evaluated']} poses after localization): "
           f"x-y RMSE {numbers['ape_xy_rmse_m']:.3f} m, max {numbers['ape_xy_max_m']:.3f} m; "
+          f"z RMSE {numbers['ape_z_rmse_m']:.3f} m, max {numbers['ape_z_max_m']:.3f} m; "
           f"3-D RMSE {numbers['ape_rmse_m']:.3f} m, max {numbers['ape_max_m']:.3f} m")
     print(f"yaw error: RMSE {numbers['yaw_rmse_deg']:.2f} deg, max {numbers['yaw_max_deg']:.2f} deg")
     if args.plot:

@@ -68,6 +68,9 @@ def test_reports_the_offset_put_in(tmp_path):
     assert n["yaw_max_deg"] == pytest.approx(0.5, abs=1e-3)
     assert n["poses_evaluated"] == pytest.approx(151, abs=1)
     assert "localized after 5.0 s" in proc.stdout
+    # make demo reports the height apart (issue 24): here the pose is at the right height.
+    assert n["ape_z_rmse_m"] == pytest.approx(0.0, abs=1e-6)
+    assert "z RMSE 0.000 m, max 0.000 m" in proc.stdout
 
 
 def test_relative_topic_names_as_rosbag_record_writes_them(tmp_path):
