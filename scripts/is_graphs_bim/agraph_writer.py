@@ -51,7 +51,8 @@ def build(result, mesh_name):
             assert (face.point_at(s1) - face.point_at(s0)) @ t[:2] > 0.0
         walls.append({
             "id": wi, "ifc_id": wo.entity.id(), "guid": _guid(wo.entity),
-            "name": wo.entity.Name or "", "storey": wo.storey, "surfaces": list(wo.surfaces),
+            "name": wo.entity.Name or "", "kind": wo.kind, "ifc_class": wo.entity.is_a(),
+            "storey": wo.storey, "surfaces": list(wo.surfaces),
             "thickness": _r(p.thickness), "start": _v(p.start), "center": _v(p.center),
             "length": _r(p.length), "height": _r(p.height), "external": bool(wo.external)})
     rooms = []
@@ -95,10 +96,15 @@ def report(result, storeys, surfaces, walls, rooms, doorways):
         kinds = {kind: sum(1 for d in doorways if d["storey"] == k and d["kind"] == kind)
                  for kind in KINDS}
         dropped = sorted((result.dropped.get(k) or {}).items())
+        real = [w for w in walls if w["kind"] != "flush_element"]
+        fl = [w for w in walls if w["kind"] == "flush_element" and w["storey"] == k]
         out.append({
             "storey": k, "name": s["name"],
-            "kept": {"walls": len({w["ifc_id"] for w in walls if w["storey"] == k}),
-                     "wall_pieces": count(walls), "wall_surfaces": count(surfaces),
+            "kept": {"walls": len({w["ifc_id"] for w in real if w["storey"] == k}),
+                     "wall_pieces": count(real), "wall_surfaces": count(surfaces),
+                     "flush_elements": len({w["ifc_id"] for w in fl}),
+                     "flush_surfaces": sum(1 for w in fl for sid in w["surfaces"]
+                                           if surfaces[sid]["rooms"]),
                      "rooms": count(rooms), "doorways": kinds,
                      "floors_from_spaces": result.made_floors.per_storey.get(k, 0)},
             "dropped": [{"ifc_class": cls, "reason": why, "count": n}
@@ -158,6 +164,10 @@ def summary_lines(graph):
         kinds = rep["kept"]["doorways"]
         if kinds.get("opening") or kinds.get("virtual"):
             lines.append("    doorways: " + ", ".join(f"{kinds.get(k, 0)} {k}" for k in KINDS))
+        if rep["kept"].get("flush_elements"):
+            lines.append(f"    flush elements: {rep['kept']['flush_elements']} (columns and the "
+                         f"like on a room outline): {rep['kept']['flush_surfaces']} "
+                         "wall-surface(s) bounding rooms")
         if rep["kept"].get("floors_from_spaces"):
             lines.append(f"    floors from spaces: {rep['kept']['floors_from_spaces']} (no slab "
                          "under them: their footprints added to the mesh as floors)")

@@ -4,7 +4,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import boundaries, doors, floors, ifc_model, mesh, openings, spaces, walls
+from . import boundaries, doors, floors, flush, ifc_model, mesh, openings, spaces, walls
 from .floors import Floors
 
 
@@ -15,6 +15,8 @@ class WallOut:
     piece: walls.WallPiece
     surfaces: tuple         # (surface id, surface id)
     external: bool
+    kind: str = "wall"      # "wall" | "curtain_wall" | "flush_element" (flush.py)
+    face_rooms: tuple = None   # flush_element: (room ids of face a, of face b)
 
 
 @dataclass
@@ -83,9 +85,43 @@ def _convert_walls(model, shapes, sidx, diag, tally):
         for p in pieces:
             out.append(WallOut(w, storey, p, (-1, -1), ext))
     out += _convert_curtain_walls(model, shapes, sidx, diag, tally)
+    return out
+
+
+def _number_walls(out):
     out.sort(key=lambda wo: (wo.storey, wo.entity.id()))   # stable: keeps piece order
     for k, wo in enumerate(out):
         wo.surfaces = (2 * k, 2 * k + 1)
+    return out
+
+
+def _convert_flush_elements(model, shapes, rooms, sidx, diag, tally):
+    """Pseudo-walls of columns and other elements flush with the outline of a room a space
+    boundary says they bound (flush.py)."""
+    out = []
+    for _, (e, room_ids) in flush.candidates(model, rooms).items():
+        shape = shapes.get(e.id())
+        if not room_ids:
+            diag.warn("named by an IfcRelSpaceBoundary, but none of the spaces it bounds is a "
+                      "room: no wall-surface", e)
+            tally.drop(sidx.of(e), e, "bounds no converted room")
+            continue
+        if shape is None:
+            diag.warn("bounds a room (IfcRelSpaceBoundary) but has no 3D body geometry: no "
+                      "wall-surface", e)
+            tally.drop(sidx.of(e), e, "no 3D body geometry")
+            continue
+        found, why = flush.element_faces(shape, room_ids, rooms)
+        if not found:
+            names = ", ".join(f"'{rooms[ri].entity.Name or ''}'" for ri in room_ids)
+            diag.warn(f"bounds room(s) {names} (IfcRelSpaceBoundary) but {why}: no wall-surface",
+                      e)
+            tally.drop(sidx.of(e, float(shape.verts[:, 2].min())), e, why.split(" (")[0])
+            continue
+        ext = flush.is_external(e)
+        for fd in found:
+            out.append(WallOut(e, sidx.of(e, fd.piece.z_min), fd.piece, (-1, -1), ext,
+                               "flush_element", fd.rooms))
     return out
 
 
@@ -120,7 +156,8 @@ def _convert_curtain_walls(model, shapes, sidx, diag, tally):
             tally.drop(sidx.of(cw, float(points[:, 2].min())), cw, "curtain wall not straight")
             continue
         storey = sidx.of(cw, piece.z_min)
-        out.append(WallOut(cw, storey, piece, (-1, -1), ifc_model.wall_is_external(cw)))
+        out.append(WallOut(cw, storey, piece, (-1, -1), ifc_model.wall_is_external(cw),
+                           "curtain_wall"))
     return out
 
 
@@ -418,10 +455,18 @@ def convert(path, diag):
     if not wall_list:
         raise ifc_model.ConversionError("no IfcWall could be converted (see the warnings above)")
     rooms = _convert_rooms(model, shapes, sidx, diag, tally)
+    wall_list = _number_walls(
+        wall_list + _convert_flush_elements(model, shapes, rooms, sidx, diag, tally))
     rsb = _space_boundary_pairs(model)
-    triples = [(wo.entity.id(), wo.piece, wo.surfaces) for wo in wall_list]
+    triples = [(wo.entity.id(), wo.piece, wo.surfaces) for wo in wall_list
+               if wo.kind != "flush_element"]
     for ri, sid in boundaries.bound_rooms(triples, rooms, rsb):
         rooms[ri].surfaces.add(sid)
+    for wo in wall_list:
+        if wo.kind == "flush_element":
+            for sid, room_ids in zip(wo.surfaces, wo.face_rooms):
+                for ri in room_ids:
+                    rooms[ri].surfaces.add(sid)
     _check_rooms(model, rooms, diag)
     _infer_external(wall_list, rooms)
     door_list = _convert_doors(model, shapes, wall_list, rooms, sidx, rsb, diag, tally)

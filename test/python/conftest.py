@@ -88,6 +88,14 @@ def _box(f, ctx, k, sx, sy, sz, x0=0.0, y0=0.0, z0=0.0):
     return b.get_representation(ctx, [solid])
 
 
+def _prism(f, ctx, k, points, sz):
+    """An extruded polygon (points in metres, local frame) from z 0 to sz."""
+    from ifcopenshell.util.shape_builder import ShapeBuilder
+    b = ShapeBuilder(f)
+    rect = b.polyline([(x * k, y * k) for x, y in points], closed=True)
+    return b.get_representation(ctx, [b.extrude(b.profile(rect), magnitude=sz * k)])
+
+
 def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wall=False,
                 lonely_door=False, external_pset=True, south_external=True, partition="door",
                 window_opening=False, virtual_element=False, curtain_wall=None,
@@ -105,7 +113,12 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
     storey_elevation=None leaves the storey's Elevation unset, storey_placement=False drops its
     placement. extras: "space_C" adds a space C far from every wall (x 20..23, y 0..3);
     "orphan_opening" an IfcOpeningElement OP_orphan that voids nothing; "dup_opening" an unfilled
-    opening OP_dup in the partition where door D_AB is. Returns {name: step id}."""
+    opening OP_dup in the partition where door D_AB is; "columns" (issue 24) an IfcColumn C_corner
+    in A's north-west corner (x 0.2..0.6, y 3.4..3.8, 2.6 m high; A's footprint goes round it, so
+    its faces x = 0.6 and y = 3.4 are on A's outline), an IfcColumn C_free standing in A
+    (x 2.0..2.4, y 1.8..2.2) and an IfcBuildingElementProxy P_low in B's south-east corner
+    (x 7.4..7.8, y 0.2..0.6, only 1.0 m high; B's footprint goes round it), each named by a
+    PHYSICAL IfcRelSpaceBoundary of its space. Returns {name: step id}."""
     import ifcopenshell
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -265,15 +278,36 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
         door("D_lonely", lonely, 1.0)
     if spaces:
         split = (4.0, 4.0) if partition == "none" else (3.9, 4.1)
+        notched = {"A": [(0.2, 0.2), (split[0], 0.2), (split[0], 3.8), (0.6, 3.8), (0.6, 3.4),
+                         (0.2, 3.4)],
+                   "B": [(split[1], 0.2), (7.4, 0.2), (7.4, 0.6), (7.8, 0.6), (7.8, 3.8),
+                         (split[1], 3.8)]}
         for name, x0, x1 in (("A", 0.2, split[0]), ("B", split[1], 7.8)):
             sp = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSpace", name=name,
                                                      )
             sp.LongName = "Room " + name
             _placement(f, sp, 0.0, 0.0)
             ifcopenshell.api.aggregate.assign_object(f, relating_object=storey, products=[sp])
-            ifcopenshell.api.geometry.assign_representation(
-                f, product=sp, representation=_box(f, body, k, x1 - x0, 3.6, 2.6, x0, 0.2, 0.0))
+            rep = _prism(f, body, k, notched[name], 2.6) if "columns" in extras else \
+                _box(f, body, k, x1 - x0, 3.6, 2.6, x0, 0.2, 0.0)
+            ifcopenshell.api.geometry.assign_representation(f, product=sp, representation=rep)
             ids["space_" + name] = sp.id()
+        if "columns" in extras:
+            for cls, name, (x0, y0, sz), room in (
+                    ("IfcColumn", "C_corner", (0.2, 3.4, 2.6), "A"),
+                    ("IfcColumn", "C_free", (2.0, 1.8, 2.6), "A"),
+                    ("IfcBuildingElementProxy", "P_low", (7.4, 0.2, 1.0), "B")):
+                c = ifcopenshell.api.root.create_entity(f, ifc_class=cls, name=name)
+                _placement(f, c, 0.0, 0.0)
+                ifcopenshell.api.geometry.assign_representation(
+                    f, product=c, representation=_box(f, body, k, 0.4, 0.4, sz, x0, y0))
+                ifcopenshell.api.spatial.assign_container(f, products=[c],
+                                                          relating_structure=storey)
+                ids[name] = c.id()
+                f.create_entity("IfcRelSpaceBoundary", GlobalId=ifcopenshell.guid.new(),
+                                RelatingSpace=f.by_id(ids["space_" + room]),
+                                RelatedBuildingElement=c, PhysicalOrVirtualBoundary="PHYSICAL",
+                                InternalOrExternalBoundary="INTERNAL")
         if virtual_element:
             ve = ifcopenshell.api.root.create_entity(f, ifc_class="IfcVirtualElement", name="V_AB")
             ifcopenshell.api.spatial.assign_container(f, products=[ve], relating_structure=storey)

@@ -11,8 +11,8 @@ FIELDS = {
     "storeys": {"id", "ifc_id", "guid", "name", "elevation", "height"},
     "wall_surfaces": {"id", "ifc_id", "guid", "wall", "storey", "normal", "d", "orientation",
                       "start", "end", "z_min", "z_max", "rooms"},
-    "walls": {"id", "ifc_id", "guid", "name", "storey", "surfaces", "thickness", "start",
-              "center", "length", "height", "external"},
+    "walls": {"id", "ifc_id", "guid", "name", "kind", "ifc_class", "storey", "surfaces",
+              "thickness", "start", "center", "length", "height", "external"},
     "rooms": {"id", "ifc_id", "guid", "name", "long_name", "storey", "polygon", "z_min", "z_max",
               "center", "area", "surfaces", "walls", "doorways"},
     "doorways": {"id", "ifc_id", "guid", "name", "storey", "wall", "position", "width", "height",
@@ -20,10 +20,10 @@ FIELDS = {
 }
 
 
-@pytest.fixture(params=["fzk", "duplex", "house"])
+@pytest.fixture(params=["fzk", "duplex", "house", "columns"])
 def graph(request, make_house, run_converter, tmp_path):
-    if request.param == "house":
-        path, _ = make_house()
+    if request.param in ("house", "columns"):
+        path, _ = make_house(extras=("columns",) if request.param == "columns" else ())
         proc = run_converter([path, "-o", tmp_path / "house", "--quiet"])
         assert proc.returncode == 0, proc.stderr
         import json
@@ -51,8 +51,13 @@ def test_report_counts_what_was_kept(graph):
         k = s["id"]
         assert r["name"] == s["name"]
         kept = r["kept"]
-        assert kept["wall_pieces"] == sum(1 for w in g["walls"] if w["storey"] == k)
-        assert kept["walls"] == len({w["ifc_id"] for w in g["walls"] if w["storey"] == k})
+        walls = [w for w in g["walls"] if w["kind"] != "flush_element"]   # walls proper
+        flush = [w for w in g["walls"] if w["kind"] == "flush_element" and w["storey"] == k]
+        assert kept["wall_pieces"] == sum(1 for w in walls if w["storey"] == k)
+        assert kept["walls"] == len({w["ifc_id"] for w in walls if w["storey"] == k})
+        assert kept["flush_elements"] == len({w["ifc_id"] for w in flush})
+        assert kept["flush_surfaces"] == sum(1 for w in flush for s in w["surfaces"]
+                                             if g["wall_surfaces"][s]["rooms"])
         assert kept["wall_surfaces"] == sum(1 for x in g["wall_surfaces"] if x["storey"] == k)
         assert kept["rooms"] == sum(1 for x in g["rooms"] if x["storey"] == k)
         assert kept["doorways"] == {kind: sum(1 for d in g["doorways"] if d["storey"] == k
