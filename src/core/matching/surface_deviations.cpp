@@ -78,8 +78,10 @@ std::vector<SurfaceDeviation> GraphMatcher::Deviations(
         *sse += m.first * m.first;
     }
   };
+  // At most half of the pairs are left out: where more stand off, there is no consensus to
+  // refit to (and the rounds stay bounded: O(n^2) fits at worst).
   Pose2 pose = h.pose;
-  for (size_t round = 0; round < all.size(); ++round) {
+  for (size_t round = 0; 2 * round < all.size(); ++round) {
     int off = 0;
     double sse = 0.0;
     tally(pose, left_out, &off, &sse);
