@@ -38,6 +38,14 @@ def _run(args, timeout=300):
                           text=True, timeout=timeout, env=env)
 
 
+def convert_quiet(run_converter, path, out):
+    """Converts `path` into `out` (--quiet): (the A-Graph as a dict, the converter's stderr)."""
+    proc = run_converter([path, "-o", out, "--quiet"])
+    assert proc.returncode == 0, proc.stderr
+    with open(proc.stdout.strip().splitlines()[-1], encoding="utf-8") as fh:
+        return json.load(fh), proc.stderr
+
+
 @pytest.fixture(scope="session")
 def run_converter():
     return _run

@@ -1,14 +1,8 @@
 """Bad input (issue 24): each odd element is named by a warning (IfcClass #id ... [GlobalId ..])
 that says what was done instead; never a silent loss, never a crash."""
-import json
 import re
 
-
-def _convert(run_converter, path, out):
-    proc = run_converter([path, "-o", out, "--quiet"])
-    assert proc.returncode == 0, proc.stderr
-    with open(proc.stdout.strip().splitlines()[-1], encoding="utf-8") as fh:
-        return json.load(fh), proc.stderr
+from conftest import convert_quiet as _convert
 
 
 def _one(g, tag):

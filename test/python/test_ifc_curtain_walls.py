@@ -1,16 +1,14 @@
 """IfcCurtainWall: its panels (IfcPlate) and mullions (IfcMember) taken together are one straight
 wall with two wall-surfaces, bounding the rooms it faces like any IfcWall (issue 24). No file in
 ../shared/bim has one (grep -c IFCCURTAINWALL: 0 in all six): synthetic house only."""
-import json
 
 import pytest
 
+from conftest import convert_quiet
+
 
 def _convert(run_converter, path, out):
-    proc = run_converter([path, "-o", out, "--quiet"])
-    assert proc.returncode == 0, proc.stderr
-    with open(proc.stdout.strip().splitlines()[-1], encoding="utf-8") as fh:
-        return json.load(fh)
+    return convert_quiet(run_converter, path, out)[0]
 
 
 def test_curtain_wall_is_a_wall_bounding_its_room(make_house, run_converter, tmp_path):

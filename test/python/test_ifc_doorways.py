@@ -9,14 +9,7 @@ import os
 
 import pytest
 
-from conftest import SHARED_BIM
-
-
-def _convert(run_converter, path, out):
-    proc = run_converter([path, "-o", out, "--quiet"])
-    assert proc.returncode == 0, proc.stderr
-    with open(proc.stdout.strip().splitlines()[-1], encoding="utf-8") as fh:
-        return json.load(fh), proc.stderr
+from conftest import SHARED_BIM, convert_quiet as _convert
 
 
 def _room(g, name):
