@@ -1,6 +1,7 @@
 #include "sgraph_conversions.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "id_conversions.h"
 #include "point_conversions.h"
@@ -11,6 +12,7 @@ namespace ros_conversions {
 is_graphs::SGraph ToMsg(const sgraph::SGraph& graph) {
   is_graphs::SGraph msg;
   msg.revision = graph.revision;
+  msg.odometry_scale = graph.odometry_scale;
   for (const auto& k : graph.keyframes) {
     is_graphs::Keyframe m;
     m.id = static_cast<uint32_t>(k.id);
@@ -81,6 +83,9 @@ sgraph::SGraph FromMsg(const is_graphs::SGraph& msg) {
   sgraph::SGraph graph;
   graph.revision = msg.revision;
   graph.stamp = msg.header.stamp.toSec();
+  // 0 from a node older than the field: the odometry as it reads.
+  const double scale = msg.odometry_scale;
+  graph.odometry_scale = std::isfinite(scale) && scale > 0.5 && scale < 2.0 ? scale : 1.0;
   for (const auto& m : msg.keyframes) {
     sgraph::Keyframe k;
     k.id = static_cast<int>(m.id);

@@ -130,6 +130,8 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "odom_sigma_rotation", b.odom_sigma_rotation);
   Read(pnh, "odom_sigma_z", b.odom_sigma_z);
   Read(pnh, "odom_sigma_roll_pitch", b.odom_sigma_roll_pitch);
+  Read(pnh, "odometry_scale_sigma", b.odometry_scale_sigma);
+  Read(pnh, "odometry_scale_max_error", b.odometry_scale_max_error);
   Read(pnh, "plane_huber", b.plane_huber);
   Read(pnh, "room_cauchy", b.room_cauchy);
   Read(pnh, "room_sigma", b.room_sigma);

@@ -9,6 +9,7 @@
 #include "is_graphs/sgraph/cost/floor_room_cost.h"
 #include "is_graphs/sgraph/cost/keyframe_plane_cost.h"
 #include "is_graphs/sgraph/cost/odometry_cost.h"
+#include "is_graphs/sgraph/cost/odometry_scale_prior_cost.h"
 #include "is_graphs/sgraph/cost/room_plane_cost.h"
 #include "is_graphs/sgraph/plane_fit.h"
 
@@ -33,9 +34,42 @@ TEST(OdometryCost, ZeroWhenTheRelativePoseMatches) {
   const Eigen::Quaterniond qi = Yaw(1.0);
   const Vector3d tj = ti + qi * z.translation();
   const Eigen::Quaterniond qj = qi * Yaw(0.3);
-  EXPECT_LT(testing::Residual(*cost, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data()})
+  const double one = 1.0;
+  EXPECT_LT(
+      testing::Residual(*cost, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data(), &one})
+          .norm(),
+      1e-12);
+}
+
+TEST(OdometryCost, TheScaleStretchesTheMeasuredTranslationOnly) {
+  // Odometry read 1.0 m and a 0.3 rad turn; the keyframes are 1.06 m apart with that turn:
+  // zero at s = 1.06, and at s = 1 the translation error is 0.06 m along the step.
+  Eigen::Isometry3d z = Eigen::Isometry3d::Identity();
+  z.linear() = Yaw(0.3).toRotationMatrix();
+  z.translation() = Vector3d(1.0, 0.0, 0.0);
+  std::unique_ptr<ceres::CostFunction> cost(OdometryCost::Create(z, Matrix6d::Identity()));
+  const Vector3d ti(2, 3, 0.5);
+  const Eigen::Quaterniond qi = Yaw(1.0);
+  const Vector3d tj = ti + qi * Vector3d(1.06, 0.0, 0.0);
+  const Eigen::Quaterniond qj = qi * Yaw(0.3);
+  const double right = 1.06, unit = 1.0;
+  EXPECT_LT(testing::Residual(
+                *cost, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data(), &right})
                 .norm(),
             1e-12);
+  const Eigen::VectorXd r = testing::Residual(
+      *cost, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data(), &unit});
+  // t_E = R_Z⁻¹ (0.06, 0, 0): the error seen in the measured end frame (turned by 0.3).
+  EXPECT_NEAR(r(0), 0.06 * std::cos(0.3), 1e-12);
+  EXPECT_NEAR(r(1), -0.06 * std::sin(0.3), 1e-12);
+  EXPECT_NEAR(r.tail<4>().norm(), 0.0, 1e-12);
+}
+
+TEST(OdometryScalePriorCost, HandComputed) {
+  std::unique_ptr<ceres::CostFunction> cost(OdometryScalePriorCost::Create(0.05));
+  const double s = 1.06, one = 1.0;
+  EXPECT_NEAR(testing::Residual(*cost, {&s})(0), 1.2, 1e-12);
+  EXPECT_NEAR(testing::Residual(*cost, {&one})(0), 0.0, 1e-15);
 }
 
 TEST(OdometryCost, HandComputedTranslationAndRotationErrors) {
@@ -45,8 +79,9 @@ TEST(OdometryCost, HandComputedTranslationAndRotationErrors) {
       OdometryCost::Create(Eigen::Isometry3d::Identity(), sqrt_info));
   const Vector3d ti(0, 0, 0), tj(0.1, 0, 0);
   const Eigen::Quaterniond qi = Eigen::Quaterniond::Identity(), qj = Yaw(0.02);
-  const Eigen::VectorXd r =
-      testing::Residual(*cost, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data()});
+  const double one = 1.0;
+  const Eigen::VectorXd r = testing::Residual(
+      *cost, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data(), &one});
   // t_E = 0.1 x (whitened by 10), rotation error 2 sin(0.01) about z.
   EXPECT_NEAR(r(0), 1.0, 1e-12);
   EXPECT_NEAR(r(5), 2.0 * std::sin(0.01), 1e-12);
@@ -59,13 +94,15 @@ TEST(OdometryCost, JacobiansMatchNumericDifferentiation) {
   z.translation() = Vector3d(0.8, -0.1, 0.01);
   const Matrix6d s = Eigen::Matrix<double, 6, 1>(10, 20, 30, 40, 50, 60).asDiagonal();
   std::unique_ptr<ceres::CostFunction> autodiff(OdometryCost::Create(z, s));
-  ceres::NumericDiffCostFunction<OdometryCost, ceres::CENTRAL, 6, 3, 4, 3, 4> numeric(
+  ceres::NumericDiffCostFunction<OdometryCost, ceres::CENTRAL, 6, 3, 4, 3, 4, 1> numeric(
       new OdometryCost(z, s));
+  const double scale = 0.97;
   const Vector3d ti(1, 2, 0.5), tj(1.7, 2.3, 0.52);
   const Eigen::Quaterniond qi = Yaw(0.4), qj = Yaw(0.65) * Eigen::Quaterniond(Eigen::AngleAxisd(
                                                                0.01, Vector3d::UnitX()));
   testing::ExpectSameEvaluation(
-      *autodiff, numeric, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data()}, 1e-6);
+      *autodiff, numeric, {ti.data(), qi.coeffs().data(), tj.data(), qj.coeffs().data(), &scale},
+      1e-6);
 }
 
 TEST(KeyframePlaneCost, HandComputedOffsetAndRotation) {

@@ -1,6 +1,8 @@
 // Round trips of the message conversions: core graph -> message -> core graph keeps every field.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "../../src/ros/agraph_conversions.h"
 #include "../../src/ros/cloud_conversions.h"
 #include "../../src/ros/graph_match_conversions.h"
@@ -59,6 +61,7 @@ TEST(AGraphConversions, RoundTripKeepsTheFixture) {
 sgraph::SGraph MakeSGraph() {
   sgraph::SGraph g;
   g.revision = 7;
+  g.odometry_scale = 1.04;
   for (int i = 0; i < 3; ++i) {
     sgraph::Keyframe k;
     k.id = 10 + i;
@@ -108,10 +111,19 @@ sgraph::SGraph MakeSGraph() {
   return g;
 }
 
+TEST(SGraphConversions, AnOdometryScaleFromAnOlderNodeIsOne) {
+  is_graphs::SGraph msg = ros_conversions::ToMsg(MakeSGraph());
+  for (double bad : {0.0, -1.0, 5.0, std::numeric_limits<double>::quiet_NaN()}) {
+    msg.odometry_scale = bad;
+    EXPECT_EQ(ros_conversions::FromMsg(msg).odometry_scale, 1.0) << bad;
+  }
+}
+
 TEST(SGraphConversions, RoundTripKeepsEveryField) {
   const sgraph::SGraph a = MakeSGraph();
   const sgraph::SGraph b = ros_conversions::FromMsg(ros_conversions::ToMsg(a));
   EXPECT_EQ(a.revision, b.revision);
+  EXPECT_EQ(a.odometry_scale, b.odometry_scale);
   ASSERT_EQ(a.keyframes.size(), b.keyframes.size());
   for (size_t i = 0; i < a.keyframes.size(); ++i) {
     EXPECT_EQ(a.keyframes[i].id, b.keyframes[i].id);

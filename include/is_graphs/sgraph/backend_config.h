@@ -16,6 +16,11 @@ struct BackendConfig {
   double odom_sigma_rotation{0.005};
   double odom_sigma_z{0.005};  // z, roll, pitch are near-true on a legged robot
   double odom_sigma_roll_pitch{0.002};
+  // The odometry's distance scale factor s (legged odometry over- or under-reads distance by a
+  // few per cent, more on some floors): estimated with the graph under a prior N(1, σ²), kept
+  // within 1 ± odometry_scale_max_error. σ = 0 holds s at 1 (odometry taken as it reads).
+  double odometry_scale_sigma{0.05};
+  double odometry_scale_max_error{0.2};
 
   // Robust losses (on the whitened residual).
   double plane_huber{1.0};

@@ -83,6 +83,7 @@ struct SGraph {
   std::vector<Room> rooms;
   std::vector<Floor> floors;
   std::vector<Doorway> doorways;
+  double odometry_scale{1.0};  // the back end's estimate of the odometry's distance scale
 };
 
 }  // namespace sgraph

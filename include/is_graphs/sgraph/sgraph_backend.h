@@ -41,6 +41,7 @@ struct BackendProblem {
   std::vector<PlaneObservation> observations;
   std::vector<BackendRoom> rooms;
   BackendFloor floor;
+  double odometry_scale{1.0};  // odometry distance scale factor: initial value, written back
 };
 
 struct BackendSummary {

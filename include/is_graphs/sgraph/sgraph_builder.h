@@ -146,6 +146,7 @@ class SGraphBuilder {
   std::vector<BackendRoom> rooms_;
   std::vector<std::vector<int>> room_keyframes_;
   BackendFloor floor_;
+  double odometry_scale_{1.0};  // the back end's estimate (BackendProblem::odometry_scale)
 };
 
 }  // namespace sgraph

@@ -16,7 +16,9 @@ namespace sgraph {
 /// The S-Graph's parameter blocks and factors, for any ceres::Problem: the S-Graph back end
 /// solves them alone, the merger together with the A-Graph and the match constraints.
 /// Blocks: keyframe poses (t, q on EigenQuaternionManifold), plane normals (SphereManifold<3>)
-/// and offsets, room/corridor and floor centres in the plane. Factors: odometry, keyframe–plane
+/// and offsets, room/corridor and floor centres in the plane, the odometry's distance scale
+/// (under OdometryScalePriorCost; held at its value where BackendConfig::odometry_scale_sigma is
+/// 0). Factors: odometry, keyframe–plane
 /// (Huber), room–plane and corridor–plane (Cauchy), floor–room. The first keyframe is held
 /// fixed (the gauge). The ceres::Problem must own costs, losses and manifolds (Ceres' default)
 /// and must not outlive this object, which holds the blocks (not copyable).
@@ -46,6 +48,7 @@ struct SGraphFactors {
   std::map<int, PlaneBlock> planes;
   std::map<int, Eigen::Vector2d> centres;  // every room's, a block only where it has factors
   Eigen::Vector2d floor_centre{Eigen::Vector2d::Zero()};
+  double odometry_scale{1.0};  // a block where there are odometry edges
 };
 
 /// A published S-Graph as a back-end problem: the snapshot is the S-Graph's own solution, so

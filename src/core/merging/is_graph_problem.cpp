@@ -71,6 +71,9 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
   if (config.optimize_sgraph) {
     s.AddTo(s_problem, config.sgraph, problem);
     HoldOldKeyframes(config.window_keyframes, s, problem);
+    // The odometry's scale as the S-Graph estimated it over the whole run (the window sees less).
+    if (problem.HasParameterBlock(&s.odometry_scale))
+      problem.SetParameterBlockConstant(&s.odometry_scale);
   }
 
   Eigen::Vector3d xi = initial;

@@ -115,6 +115,8 @@ std::string BackendConfig::Validate() const {
   c.Positive("odom_sigma_rotation", odom_sigma_rotation);
   c.Positive("odom_sigma_z", odom_sigma_z);
   c.Positive("odom_sigma_roll_pitch", odom_sigma_roll_pitch);
+  c.NonNegative("odometry_scale_sigma", odometry_scale_sigma);
+  c.Range("odometry_scale_max_error", odometry_scale_max_error, 1e-3, 0.9);
   c.Positive("plane_huber", plane_huber);
   c.Positive("room_cauchy", room_cauchy);
   c.Positive("room_sigma", room_sigma);

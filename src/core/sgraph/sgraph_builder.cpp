@@ -204,6 +204,10 @@ void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& 
     kf.previous = prev.id;
     kf.relative_odom = prev.odom_pose.inverse() * odom_pose;
     kf.odom_information = OdometryInformation(kf.relative_odom);
+    // Predicted from the previous keyframe with the odometry's estimated distance scale.
+    Eigen::Isometry3d step = kf.relative_odom;
+    step.translation() *= odometry_scale_;
+    kf.pose = prev.pose * step;
   }
   keyframes_.push_back(kf);
   clouds_.push_back(std::move(cloud));

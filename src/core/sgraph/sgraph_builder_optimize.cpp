@@ -16,6 +16,7 @@ BackendProblem SGraphBuilder::MakeProblem() const {
   problem.observations = observations_;
   problem.rooms = rooms_;
   problem.floor = floor_;
+  problem.odometry_scale = odometry_scale_;
   return problem;
 }
 
@@ -67,6 +68,7 @@ BackendSummary SGraphBuilder::Optimize() {
     if (rooms_[i].type == problem.rooms[i].type) rooms_[i].center = problem.rooms[i].center;
   }
   if (floor_.present && problem.floor.present) floor_.center = problem.floor.center;
+  odometry_scale_ = problem.odometry_scale;
   map_T_odom_ = keyframes_.back().pose * keyframes_.back().odom_pose.inverse();
   ++revision_;
   return summary;
@@ -81,6 +83,7 @@ SGraph SGraphBuilder::Snapshot() const {
   for (const auto& p : planes_)
     if (p.merged_into < 0) graph.planes.push_back(p.plane);
   graph.observations = observations_;
+  graph.odometry_scale = odometry_scale_;
   const double height = FloorHeight();
   for (size_t i = 0; i < rooms_.size(); ++i) {
     const BackendRoom& r = rooms_[i];

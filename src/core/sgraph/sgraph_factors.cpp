@@ -5,12 +5,14 @@
 #include <ceres/sphere_manifold.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <limits>
 
 #include "is_graphs/sgraph/cost/corridor_plane_cost.h"
 #include "is_graphs/sgraph/cost/floor_room_cost.h"
 #include "is_graphs/sgraph/cost/keyframe_plane_cost.h"
 #include "is_graphs/sgraph/cost/odometry_cost.h"
+#include "is_graphs/sgraph/cost/odometry_scale_prior_cost.h"
 #include "is_graphs/sgraph/cost/room_plane_cost.h"
 #include "is_graphs/sgraph/plane_fit.h"
 
@@ -36,6 +38,7 @@ SGraphFactors::SGraphFactors(const BackendProblem& problem) {
   for (const auto& p : problem.planes) planes[p.id] = {p.plane.normal, p.plane.d, false};
   for (const auto& r : problem.rooms) centres[r.id] = r.center;
   floor_centre = problem.floor.center;
+  odometry_scale = problem.odometry_scale;
 }
 
 void SGraphFactors::AddTo(const BackendProblem& problem, const BackendConfig& config,
@@ -57,7 +60,21 @@ void SGraphFactors::AddTo(const BackendProblem& problem, const BackendConfig& co
     PoseBlock& b = poses.at(k.id);
     ceres_problem.AddResidualBlock(
         OdometryCost::Create(k.relative_odom, SqrtInformation<6>(k.odom_information)), nullptr,
-        a.t.data(), a.q.coeffs().data(), b.t.data(), b.q.coeffs().data());
+        a.t.data(), a.q.coeffs().data(), b.t.data(), b.q.coeffs().data(), &odometry_scale);
+  }
+  if (ceres_problem.HasParameterBlock(&odometry_scale)) {
+    if (config.odometry_scale_sigma > 0.0) {
+      ceres_problem.AddResidualBlock(OdometryScalePriorCost::Create(config.odometry_scale_sigma),
+                                     nullptr, &odometry_scale);
+      odometry_scale = std::clamp(odometry_scale, 1.0 - config.odometry_scale_max_error,
+                                  1.0 + config.odometry_scale_max_error);
+      ceres_problem.SetParameterLowerBound(&odometry_scale, 0,
+                                           1.0 - config.odometry_scale_max_error);
+      ceres_problem.SetParameterUpperBound(&odometry_scale, 0,
+                                           1.0 + config.odometry_scale_max_error);
+    } else {
+      ceres_problem.SetParameterBlockConstant(&odometry_scale);
+    }
   }
   for (const auto& o : problem.observations) {
     auto kf = poses.find(o.keyframe);
@@ -111,6 +128,7 @@ void SGraphFactors::WriteBack(BackendProblem& problem) const {
   }
   for (auto& r : problem.rooms) r.center = centres.at(r.id);
   problem.floor.center = floor_centre;
+  problem.odometry_scale = odometry_scale;
 }
 
 BackendProblem BackendProblemFromSnapshot(const SGraph& graph) {
@@ -118,6 +136,7 @@ BackendProblem BackendProblemFromSnapshot(const SGraph& graph) {
   problem.keyframes = graph.keyframes;
   problem.planes = graph.planes;
   problem.observations = graph.observations;
+  problem.odometry_scale = graph.odometry_scale;
   std::map<int, const Plane*> by_id;
   for (const auto& p : graph.planes) by_id[p.id] = &p;
   for (const auto& r : graph.rooms) {
