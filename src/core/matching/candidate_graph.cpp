@@ -10,8 +10,6 @@ namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kSpanAngle = 20.0 * kDegToRad;  // planes this far apart fix a translation
 
-double Heading(const Eigen::Vector2d& v) { return std::atan2(v.y(), v.x()); }
-
 int NeededPlanes(int n, double fraction) {
   return std::max(std::min(n, 2), static_cast<int>(std::ceil(fraction * n - 1e-9)));
 }
@@ -28,13 +26,15 @@ void PruneInconsistent(const RoomDescriptor& s, const RoomDescriptor& a, double 
   const size_t n = pairs.size();
   if (n < 2) return;
   const double cos_angle_tol = std::cos(angle_tol);
-  std::vector<char> conflict(n * n, 0);
+  thread_local std::vector<char> conflict;  // reused: this runs for every A-room and yaw
+  thread_local std::vector<int> alive;
+  conflict.assign(n * n, 0);
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j)
       conflict[i * n + j] = conflict[j * n + i] = !SurfacePairsAgree(
           Foot(s, pairs[i].first), Foot(s, pairs[j].first), Foot(a, pairs[i].second),
           Foot(a, pairs[j].second), cos_angle_tol, distance_tol);
-  std::vector<int> alive(n);  // indices into the original pairs, in order
+  alive.resize(n);  // indices into the original pairs, in order
   for (size_t i = 0; i < n; ++i) alive[i] = static_cast<int>(i);
   while (alive.size() >= 2) {
     int worst = -1, worst_count = 0;
@@ -75,12 +75,15 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   } else if (!a.polygon.empty() && SignedDistanceToPolygon(a.polygon, centre_b) > tol.centre) {
     return out;
   }
-  std::vector<bool> a_used(a.planes.size(), false);
+  thread_local std::vector<char> a_used;             // reused: this runs for every candidate pair
+  thread_local std::vector<Eigen::Vector2d> turned;  // the S-normals in B
+  a_used.assign(a.planes.size(), 0);
+  turned.resize(s.planes.size());
   out.surfaces.reserve(s.planes.size());
   out.residuals.reserve(s.planes.size());
   double sum_sq = 0.0;
   for (size_t i = 0; i < s.planes.size(); ++i) {
-    const Eigen::Vector2d n = rot * s.planes[i].normal;
+    const Eigen::Vector2d n = turned[i] = rot * s.planes[i].normal;
     const double d = s.planes[i].d + n.dot(pose.t);
     const double r = n.dot(a.centre) - d;  // A-centre in front of the moved S-plane
     int best = -1;
@@ -93,7 +96,7 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
     if (best < 0) continue;
     out.surfaces.emplace_back(static_cast<int>(i), best);
     out.residuals.push_back(best_err);
-    a_used[best] = true;
+    a_used[best] = 1;
     sum_sq += best_err * best_err;
   }
   const int n = static_cast<int>(s.planes.size());
@@ -105,8 +108,8 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   double seen = 0.0, total = 0.0;
   for (size_t j = 0; j < a.planes.size(); ++j) {
     bool relevant = full_rank;
-    for (const auto& p : s.planes)
-      relevant = relevant || std::abs((rot * p.normal).dot(a.planes[j].normal)) >= min_cos;
+    for (size_t i = 0; i < turned.size() && !relevant; ++i)
+      relevant = std::abs(turned[i].dot(a.planes[j].normal)) >= min_cos;
     if (!relevant) continue;
     const double len = a.planes[j].length > 0.0 ? a.planes[j].length : 1.0;
     total += len;
@@ -142,10 +145,15 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
       break;
     }
 
-  std::vector<double> yaws;  // reused for every A-room, as are the vectors below
+  struct Turn {
+    double yaw;
+    Eigen::Matrix2d rot;
+  };
+  std::vector<Turn> yaws;  // reused for every A-room, as are the vectors below
   std::vector<std::pair<int, int>> pairs;
   std::vector<PlaneCorrespondence> planes;
   std::vector<PlaneFeature> matched_s;
+  std::vector<PointCorrespondence> centre(1);
   for (size_t ai = 0; ai < a_rooms.size(); ++ai) {
     const RoomDescriptor& a = a_rooms[ai];
     // Structural pre-check (cheap): enough S-planes have an A-surface at their distance.
@@ -162,15 +170,24 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
     for (int anchor : anchors)
       for (const auto& q : a.planes) {
         if (std::abs(s.planes[anchor].r - q.r) > r_tol) continue;
-        const double yaw = Heading(q.normal) - Heading(s.planes[anchor].normal);
-        if (std::none_of(yaws.begin(), yaws.end(),
-                         [&](double y) { return AngleDistance(y, yaw) < 1.0 * kDegToRad; }))
-          yaws.push_back(yaw);
+        // The turn taking the anchor's normal to q's, and its rotation without sin/cos.
+        const Eigen::Vector2d& from = s.planes[anchor].normal;
+        const double sin_t = from.x() * q.normal.y() - from.y() * q.normal.x();
+        const double cos_t = from.dot(q.normal);
+        const double yaw = std::atan2(sin_t, cos_t);
+        if (std::any_of(yaws.begin(), yaws.end(),
+                        [&](const Turn& t) { return AngleDistance(t.yaw, yaw) < 1.0 * kDegToRad; }))
+          continue;
+        const double norm = std::hypot(sin_t, cos_t);
+        Turn turn{yaw, Eigen::Matrix2d::Identity()};
+        if (norm > 0.0) turn.rot << cos_t / norm, -sin_t / norm, sin_t / norm, cos_t / norm;
+        yaws.push_back(turn);
       }
 
     const size_t first_of_room = out.size();
-    for (double yaw : yaws) {
-      const Eigen::Matrix2d rot = Pose2{yaw, Eigen::Vector2d::Zero()}.R();
+    for (const Turn& turn : yaws) {
+      const double yaw = turn.yaw;
+      const Eigen::Matrix2d& rot = turn.rot;
       pairs.clear();
       for (size_t i = 0; i < s.planes.size(); ++i) {
         const Eigen::Vector2d n = rot * s.planes[i].normal;
@@ -196,8 +213,7 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
       const bool full_rank =
           s.kind == RoomKind::kRoom && PlanesSpanTwoDirections(matched_s, kSpanAngle);
       // The centre as a prior: firm for a room, only nominal along a corridor's axis.
-      const std::vector<PointCorrespondence> centre{
-          {s.centre, a.centre, full_rank ? config.centre_tolerance : 100.0}};
+      centre[0] = {s.centre, a.centre, full_rank ? config.centre_tolerance : 100.0};
       RigidFit fit = FitYawTranslation(planes, centre);
       if (AngleDistance(fit.pose.yaw, yaw) > 2.0 * tol.angle_rad) continue;
 

@@ -78,9 +78,10 @@ std::vector<MatchPair> DoorwayEvidence::Pairs(const std::vector<SDoorwayView>& d
   std::vector<Candidate> candidates;
   const Storey& st = it->second;
   std::vector<int> near;
+  const Eigen::Matrix2d rot = pose.R();  // once, not per doorway
   for (size_t i = 0; i < doorways.size(); ++i) {
     const SDoorwayView& s = doorways[i];
-    const Eigen::Vector2d at = pose.Apply(s.at);
+    const Eigen::Vector2d at = rot * s.at + pose.t;
     // The A-doorways in the 3 x 3 cells around it, in index order (deterministic pairing).
     near.clear();
     const long long cx = static_cast<long long>(std::floor(at.x() / cell_));

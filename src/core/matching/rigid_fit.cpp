@@ -76,7 +76,11 @@ RigidFit FitYawTranslation(const std::vector<PlaneCorrespondence>& planes,
     }
   }
   fit.pose.yaw = (sin_sum == 0.0 && cos_sum == 0.0) ? 0.0 : std::atan2(sin_sum, cos_sum);
-  const Eigen::Matrix2d r = fit.pose.R();
+  // The rotation straight from the sums (no sin/cos of the angle just taken).
+  const double norm = std::hypot(sin_sum, cos_sum);
+  const double c = norm > 0.0 ? cos_sum / norm : 1.0, s = norm > 0.0 ? sin_sum / norm : 0.0;
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
 
   // Translation: Σ wo (n'·t - y)² + Σ wp |a - R s - t|².
   Eigen::Matrix2d a = Eigen::Matrix2d::Zero();

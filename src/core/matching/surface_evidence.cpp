@@ -73,8 +73,9 @@ std::vector<SurfaceEvidence::Along> SurfaceEvidence::AlongSurfaces(const WallSeg
   const auto found = storeys_.find(storey);
   if (found == storeys_.end() || plane.length <= 0.0) return out;
   const Storey& st = found->second;
-  const Eigen::Vector2d a = pose.Apply(plane.a), b = pose.Apply(plane.b);
-  const Eigen::Vector2d n = pose.Rotate(plane.normal);
+  const Eigen::Matrix2d rot = pose.R();  // once, not per point
+  const Eigen::Vector2d a = rot * plane.a + pose.t, b = rot * plane.b + pose.t;
+  const Eigen::Vector2d n = rot * plane.normal;
   const Eigen::Vector2d middle = 0.5 * (a + b);
   const Eigen::Vector2d along = (b - a) / plane.length;
   std::vector<int> candidates;

@@ -123,10 +123,11 @@ std::set<int> WallCrossings::Through(const std::vector<PathStep>& steps, const P
   };
   std::vector<Hit> hits;
   Eigen::Vector2d last(std::nan(""), std::nan(""));
+  const Eigen::Matrix2d rot = pose.R();  // once, not per step
   for (const auto& [m0, m1] : steps) {
     if (!(m0 - last).isZero(1e-9)) inside.clear();  // a gap: the path starts anew
     last = m1;
-    const Eigen::Vector2d p0 = pose.Apply(m0), p1 = pose.Apply(m1);
+    const Eigen::Vector2d p0 = rot * m0 + pose.t, p1 = rot * m1 + pose.t;
     candidates.clear();
     for (long long ix = CellOf(std::min(p0.x(), p1.x())); ix <= CellOf(std::max(p0.x(), p1.x()));
          ++ix)
