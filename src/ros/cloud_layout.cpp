@@ -1,7 +1,9 @@
 #include "cloud_layout.h"
 
+#include <initializer_list>
 #include <map>
 #include <set>
+#include <utility>
 
 namespace is_graphs {
 namespace ros_conversions {
