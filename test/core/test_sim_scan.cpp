@@ -19,7 +19,7 @@ constexpr double kSx = 10.0, kSy = 8.0, kSz = 3.0;
 
 struct World {
   explicit World(const std::vector<PlanarWaypoint>& waypoints, double speed = 0.8,
-                 Vlp16Config sensor = {}, GaitConfig gait = {})
+                 LidarConfig sensor = {}, GaitConfig gait = {})
       : mesh(testing::BoxRoom(kSx, kSy, kSz)), model(sensor) {
     embree = std::move(EmbreeScene::Create(mesh)).value();
     TrajectoryConfig tc;
@@ -40,7 +40,7 @@ struct World {
     return motion->BasePose(scan.stamp + p.time) * base_T_velodyne * Eigen::Vector3d(p.x, p.y, p.z);
   }
   SceneMesh mesh;
-  Vlp16Model model;
+  LidarModel model;
   std::unique_ptr<EmbreeScene> embree;
   std::unique_ptr<RobotMotion> motion;
   Eigen::Isometry3d base_T_velodyne{Eigen::Isometry3d::Identity()};
@@ -81,7 +81,7 @@ TEST(SimScan, PointsLieOnTheSurfacesWithinTheNoise) {
   // Walking at up to 1 m/s with the gait sway: for each point, the sensor pose at the point's
   // own time gives the true range along its beam to the room's surfaces; the measured ranges
   // differ from it by the configured Gaussian noise (mean 0, standard deviation sigma).
-  Vlp16Config sensor;
+  LidarConfig sensor;
   sensor.range_noise_stddev = 0.015;
   World world({{{8.0, 4.0}, std::nullopt, false}}, 1.0, sensor);
   const Eigen::Array3d lo(0.0, 0.0, 0.0), hi(kSx, kSy, kSz);
@@ -122,7 +122,7 @@ TEST(SimScan, PointsLieOnTheSurfacesWithinTheNoise) {
 }
 
 TEST(SimScan, NoiseFreeRangesAreExact) {
-  Vlp16Config sensor;
+  LidarConfig sensor;
   sensor.range_noise_stddev = 0.0;
   sensor.range_resolution = 0.0;
   GaitConfig still;
@@ -137,7 +137,7 @@ TEST(SimScan, NoiseFreeRangesAreExact) {
 }
 
 TEST(SimScan, NoReturnsFromTheBodyGrazingOrBeyondRange) {
-  Vlp16Config sensor;
+  LidarConfig sensor;
   sensor.max_range = 5.0;
   sensor.max_incidence_deg = 70.0;
   sensor.range_noise_stddev = 0.0;

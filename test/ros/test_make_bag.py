@@ -106,6 +106,88 @@ def test_two_runs_give_identical_bags(bag_path, tmp_path):
     assert digest(again) == digest(bag_path)
 
 
+OUSTER = np.dtype({"names": ["x", "y", "z", "intensity", "t", "reflectivity", "ring", "ambient",
+                             "range"],
+                   "formats": ["<f4", "<f4", "<f4", "<f4", "<u4", "<u2", "<u2", "<u2", "<u4"],
+                   "offsets": [0, 4, 8, 16, 20, 24, 26, 28, 32], "itemsize": 48})
+HESAI = np.dtype({"names": ["x", "y", "z", "intensity", "timestamp", "ring"],
+                  "formats": ["<f4", "<f4", "<f4", "<f4", "<f8", "<u2"],
+                  "offsets": [0, 4, 8, 16, 24, 32], "itemsize": 48})
+
+
+def model_bag(tmp_path, model):
+    scenario = tmp_path / f"{model}.yaml"
+    scenario.write_text("building: bim/office.ifc\nseed: 3\nduration: 1\n"
+                        "trajectory: {rooms: [Corridor, \"102\"]}\n"
+                        f"sensor: {{model: {model}}}\n")
+    out = str(tmp_path / f"{model}.bag")
+    r = make_bag(str(scenario), out, "--root", ROOT)
+    assert r.returncode == 0, r.stderr
+    return out
+
+
+def static_edges(bag):
+    return {(t.header.frame_id, t.child_frame_id)
+            for _, m, _ in bag.read_messages(topics=["tf_static"]) for t in m.transforms}
+
+
+def test_os1_64_bag_has_the_ouster_ros_layout(tmp_path):
+    out = model_bag(tmp_path, "os1_64")
+    with rosbag.Bag(out) as bag:
+        info = bag.get_type_and_topic_info().topics
+        assert "velodyne_points" not in info and info["ouster/points"].message_count == 10
+        assert static_edges(bag) == {("base_link", "os_sensor"), ("os_sensor", "os_lidar")}
+        for _, msg, t in bag.read_messages(topics=["ouster/points"]):
+            assert [(f.name, f.offset, f.datatype) for f in msg.fields] == [
+                ("x", 0, 7), ("y", 4, 7), ("z", 8, 7), ("intensity", 16, 7), ("t", 20, 6),
+                ("reflectivity", 24, 4), ("ring", 26, 4), ("ambient", 28, 4), ("range", 32, 6)]
+            assert (msg.height, msg.width, msg.point_step) == (64, 1024, 48)
+            assert msg.header.frame_id == "os_lidar" and not msg.is_dense
+            assert (t - msg.header.stamp).to_sec() == pytest.approx(0.1, abs=1e-6)
+            pts = np.frombuffer(msg.data, dtype=OUSTER).reshape(64, 1024)
+            # Row = ring; every column's t is its measurement time (ns after the stamp).
+            assert np.all(pts["ring"] == np.arange(64)[:, None])
+            assert np.abs(pts["t"] - np.arange(1024) * 1e8 / 1024).max() <= 0.5 + 1e-6
+            # No return: NaN x y z and range 0; a return: range = |xyz| in mm.
+            hit = np.isfinite(pts["x"])
+            assert 0.5 * hit.size < hit.sum() < hit.size  # the body hides some beams
+            assert np.all(pts["range"][~hit] == 0)
+            r = np.sqrt(pts["x"] ** 2 + pts["y"] ** 2 + pts["z"] ** 2)[hit]
+            assert np.abs(pts["range"][hit] - 1000 * r).max() <= 1.0
+            assert r.min() >= 0.5
+
+
+def test_hesai_xt32_bag_has_the_hesai_driver_layout(tmp_path):
+    out = model_bag(tmp_path, "hesai_xt32")
+    with rosbag.Bag(out) as bag:
+        info = bag.get_type_and_topic_info().topics
+        assert "velodyne_points" not in info and info["hesai/pandar"].message_count == 10
+        assert static_edges(bag) == {("base_link", "hesai_lidar")}
+        for _, msg, t in bag.read_messages(topics=["hesai/pandar"]):
+            assert [(f.name, f.offset, f.datatype) for f in msg.fields] == [
+                ("x", 0, 7), ("y", 4, 7), ("z", 8, 7), ("intensity", 16, 7),
+                ("timestamp", 24, 8), ("ring", 32, 4)]
+            assert msg.height == 1 and msg.point_step == 48 and msg.is_dense
+            assert msg.header.frame_id == "hesai_lidar"
+            pts = np.frombuffer(msg.data, dtype=HESAI)
+            # Absolute times in firing order; the stamp is the first point's.
+            assert pts["timestamp"][0] == pytest.approx(msg.header.stamp.to_sec(), abs=1e-9)
+            assert np.all(np.diff(pts["timestamp"]) >= 0)
+            assert pts["timestamp"][-1] - pts["timestamp"][0] < 0.1
+            assert (t.to_sec() - pts["timestamp"][0]) == pytest.approx(0.1, abs=1e-3)
+            assert pts["ring"].max() == 31
+            assert set(np.unique(pts["intensity"])) <= set(range(256))
+
+
+def test_unknown_lidar_model_is_named(tmp_path):
+    scenario = tmp_path / "bad.yaml"
+    scenario.write_text("building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\n"
+                        "sensor: {model: vlp32}\n")
+    r = make_bag(str(scenario), str(tmp_path / "bad.bag"), "--root", ROOT)
+    assert r.returncode == 2
+    assert "sensor.model: unknown model 'vlp32'" in r.stderr
+
+
 ROBUSTNESS = """building: bim/office.ifc
 seed: 3
 duration: 6

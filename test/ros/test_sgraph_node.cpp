@@ -126,6 +126,14 @@ TEST(SGraphNodeBadInput, BadParameterIsNamedAndTheNodeExits) {
   std::tie(code, out) = RunNode("_keyframe_distance:=fast");
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("keyframe_distance"), std::string::npos) << out;
+  // The cloud layout: an unknown driver names the parameter and the choices.
+  std::tie(code, out) = RunNode("_cloud_layout:=livox");
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("cloud_layout"), std::string::npos) << out;
+  EXPECT_NE(out.find("ouster"), std::string::npos) << out;
+  std::tie(code, out) = RunNode("_cloud_max_sweep_period:=0.0");
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("cloud_max_sweep_period"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -6,18 +6,20 @@
 
 #include "is_graphs/sim/embree_scene.h"
 #include "is_graphs/sim/gait.h"
+#include "is_graphs/sim/lidar_model.h"
 #include "is_graphs/sim/scene.h"
-#include "is_graphs/sim/vlp16_model.h"
 
 namespace is_graphs {
 namespace sim {
 
-/// One return, laid out as the velodyne_pointcloud driver's XYZIRT point (in the velodyne frame
-/// at the pulse's own time; `time` after the scan stamp).
+/// One return (XYZIRT as the velodyne_pointcloud driver's point, in the sensor's point frame at
+/// the pulse's own time; `time` after the scan stamp), with the firing sequence (column) it
+/// came from: the bag writer lays the drivers' organized clouds out by it.
 struct LidarPoint {
   float x, y, z, intensity;
   std::uint16_t ring;
   float time;
+  std::uint32_t column;
 };
 
 struct LidarScan {
@@ -31,15 +33,16 @@ struct BodyBox {
   Eigen::Vector3d size{Eigen::Vector3d::Zero()};
 };
 
-/// Ray-casts VLP-16 scans against the scene from the moving robot: each firing sequence is
+/// Ray-casts LiDAR scans against the scene from the moving robot: each firing sequence is
 /// cast from the sensor pose at its own time (motion distortion as a real sensor has it).
 /// Beams that would hit the robot's body are masked once (the body is rigid in the sensor
 /// frame), which is the self-filter. Scan i draws its noise from its own seeded stream, so a
 /// scan does not depend on the others.
 class ScanSimulator {
  public:
-  ScanSimulator(const EmbreeScene& scene, const SceneMesh& mesh, const Vlp16Model& model,
-                const RobotMotion& motion, const Eigen::Isometry3d& base_T_velodyne,
+  /// `base_T_sensor`: base_link <- the sensor's point frame.
+  ScanSimulator(const EmbreeScene& scene, const SceneMesh& mesh, const LidarModel& model,
+                const RobotMotion& motion, const Eigen::Isometry3d& base_T_sensor,
                 const BodyBox& body, std::uint64_t seed);
 
   /// The scan starting at `stamp` (s after the trajectory start); `index` selects the stream.
@@ -50,9 +53,9 @@ class ScanSimulator {
  private:
   const EmbreeScene& scene_;
   const SceneMesh& mesh_;
-  const Vlp16Model& model_;
+  const LidarModel& model_;
   const RobotMotion& motion_;
-  Eigen::Isometry3d base_T_velodyne_;
+  Eigen::Isometry3d base_T_sensor_;
   std::uint64_t seed_;
   std::vector<std::uint8_t> masked_;  // per (firing, laser)
 };

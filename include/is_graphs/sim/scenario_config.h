@@ -20,21 +20,35 @@ struct TimeWindow {
   double end{0.0};
 };
 
-/// Velodyne VLP-16 as the velodyne_pointcloud driver publishes it.
-struct Vlp16Config {
+/// The LiDAR models the simulator knows (`sensor.model`), each published as its ROS driver does.
+enum class LidarModelKind {
+  kVlp16,     // "vlp16": Velodyne VLP-16, velodyne_pointcloud (the default)
+  kOs1_64,    // "os1_64": Ouster OS1-64, ouster-ros
+  kHesaiXt32  // "hesai_xt32": Hesai PandarXT-32, Hesai ROS driver
+};
+const char* ToString(LidarModelKind model);
+std::optional<LidarModelKind> ParseLidarModel(const std::string& name);
+
+/// A spinning LiDAR (`sensor`). The member defaults are the VLP-16's; LidarConfig::For gives
+/// each model's data-sheet defaults, which a scenario's keys then override.
+struct LidarConfig {
+  LidarModelKind model{LidarModelKind::kVlp16};
   double rotation_rate_hz{10.0};       // scans per second
-  double azimuth_resolution_deg{0.2};  // firing sequences per scan = 360 / this
+  double azimuth_resolution_deg{0.2};  // firing sequences (columns) per scan = 360 / this
   double min_range{0.4};               // m; closer returns are dropped (as the driver does)
   double max_range{100.0};             // m
   double range_noise_stddev{0.015};    // m, Gaussian (±3 cm at 2σ, the data sheet's accuracy)
   double range_resolution{0.002};      // m, the packet's distance unit; 0 disables quantization
   double max_incidence_deg{85.0};      // no return beyond this angle from the surface normal
   double dropout_probability{0.0};     // random missing returns
-  double intensity_noise_stddev{2.0};  // on the 0..100 diffuse reflectivity scale
+  double intensity_noise_stddev{2.0};  // on the model's intensity scale (VLP-16: 0..100)
   double azimuth_offset_deg{0.0};      // azimuth (clockwise, from +x) of each scan's first firing
   // Sensor outages (increasing, disjoint): a scan whose sweep overlaps one is not published.
   std::vector<TimeWindow> dropouts;
   std::string Validate() const;
+  /// The model's defaults: vlp16 as above; os1_64: 1024 columns, 0.5-120 m, σ 1 cm, 1 mm;
+  /// hesai_xt32: 2000 columns (0.18°), 0.05-120 m, σ 1 cm, 4 mm.
+  static LidarConfig For(LidarModelKind model);
 };
 
 /// Walking gait superposed on the planned planar motion. Amplitudes apply at full activity
@@ -158,11 +172,12 @@ struct ScenarioConfig {
   double start_time{1000.0};  // s, ROS time of the first message
   TrajectoryConfig trajectory;
   std::optional<KidnapConfig> kidnap;
-  Vlp16Config sensor;
+  LidarConfig sensor;
   GaitConfig gait;
   OdometryConfig odometry;
   SceneConfig scene;
-  // Sensor mount (base_link -> velodyne), from urdf/spot_like.urdf.
+  // Sensor mount (base_link -> the sensor's mount frame: velodyne, os_sensor, hesai_lidar), from
+  // urdf/spot_like.urdf.
   Eigen::Vector3d velodyne_offset{0.1, 0.0, 0.1877};
   // Self-filter: the robot body box in base_link (centre, full size); returns inside are dropped.
   // Body 1.1 x 0.5 x 0.2 m plus the legs down to the floor, with 1-2 cm margin (more would hide

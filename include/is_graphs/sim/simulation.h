@@ -11,12 +11,12 @@
 #include "is_graphs/geometry/triangle_mesh.h"
 #include "is_graphs/sim/embree_scene.h"
 #include "is_graphs/sim/gait.h"
+#include "is_graphs/sim/lidar_model.h"
 #include "is_graphs/sim/odometry_drift.h"
 #include "is_graphs/sim/route_planner.h"
 #include "is_graphs/sim/scan_simulator.h"
 #include "is_graphs/sim/scenario_config.h"
 #include "is_graphs/sim/scene.h"
-#include "is_graphs/sim/vlp16_model.h"
 
 namespace is_graphs {
 namespace sim {
@@ -34,8 +34,11 @@ struct Simulation {
   Route route;
   std::optional<Route> kidnap_route;  // the route after the carry (`kidnap`)
   std::unique_ptr<RobotMotion> motion;
-  std::unique_ptr<Vlp16Model> sensor;
-  Eigen::Isometry3d base_T_velodyne{Eigen::Isometry3d::Identity()};
+  std::unique_ptr<LidarModel> sensor;
+  // base_link <- the sensor's mount frame (tf_static) and <- the frame its points are in
+  // (the same but for the Ouster: base_T_mount * spec().mount_T_points).
+  Eigen::Isometry3d base_T_mount{Eigen::Isometry3d::Identity()};
+  Eigen::Isometry3d base_T_sensor{Eigen::Isometry3d::Identity()};
   std::unique_ptr<ScanSimulator> scans;
   double duration{0.0};          // of the bag, s
   std::vector<std::string> log;  // what was built, for the user

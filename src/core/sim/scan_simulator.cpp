@@ -28,25 +28,26 @@ bool RayHitsBox(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
 }
 
 ScanSimulator::ScanSimulator(const EmbreeScene& scene, const SceneMesh& mesh,
-                             const Vlp16Model& model, const RobotMotion& motion,
-                             const Eigen::Isometry3d& base_T_velodyne, const BodyBox& body,
+                             const LidarModel& model, const RobotMotion& motion,
+                             const Eigen::Isometry3d& base_T_sensor, const BodyBox& body,
                              std::uint64_t seed)
     : scene_(scene),
       mesh_(mesh),
       model_(model),
       motion_(motion),
-      base_T_velodyne_(base_T_velodyne),
+      base_T_sensor_(base_T_sensor),
       seed_(seed) {
-  const int n = model_.FiringsPerScan() * Vlp16Model::kLasers;
+  const int lasers = model_.Lasers();
+  const int n = model_.FiringsPerScan() * lasers;
   masked_.assign(n, 0);
   const Eigen::Vector3d box_min = body.center - 0.5 * body.size;
   const Eigen::Vector3d box_max = body.center + 0.5 * body.size;
-  const Eigen::Vector3d origin = base_T_velodyne_.translation();
+  const Eigen::Vector3d origin = base_T_sensor_.translation();
   for (int k = 0; k < model_.FiringsPerScan(); ++k) {
-    for (int laser = 0; laser < Vlp16Model::kLasers; ++laser) {
+    for (int laser = 0; laser < lasers; ++laser) {
       const Eigen::Vector3d dir =
-          base_T_velodyne_.linear() * model_.Direction(k, laser).cast<double>();
-      masked_[k * Vlp16Model::kLasers + laser] =
+          base_T_sensor_.linear() * model_.Direction(k, laser).cast<double>();
+      masked_[k * lasers + laser] =
           RayHitsBox(origin, dir, box_min, box_max, model_.config().max_range) ? 1 : 0;
     }
   }
@@ -59,22 +60,22 @@ double ScanSimulator::MaskedFraction() const {
 
 LidarScan ScanSimulator::Simulate(std::uint64_t index, double stamp) const {
   const int firings = model_.FiringsPerScan();
-  const int lasers = Vlp16Model::kLasers;
-  // Per-thread scratch buffers: a scan casts ~29k rays, reallocating them each time costs page
-  // faults. The output does not depend on them.
+  const int lasers = model_.Lasers();
+  // Per-thread scratch buffers: a scan casts 29k (VLP-16) to 66k (OS1-64) rays, reallocating them
+  // each time costs page faults. The output does not depend on them.
   thread_local std::vector<Ray> rays;
-  thread_local std::vector<int> beam;  // ray -> firing * 16 + laser
+  thread_local std::vector<int> beam;  // ray -> firing * lasers + laser
   thread_local std::vector<RayHit> hits;
   rays.clear();
   beam.clear();
   const float t_max = static_cast<float>(model_.config().max_range + 1.0);
   for (int k = 0; k < firings; ++k) {
-    // One pose per firing sequence; the 16 pulses of a sequence span 35 µs (< 0.04 mm at
-    // walking speed), well below the range noise.
-    const Eigen::Isometry3d bim_T_velodyne =
-        motion_.BasePose(stamp + model_.FiringTime(k)) * base_T_velodyne_;
-    const Eigen::Matrix3f rotation = bim_T_velodyne.linear().cast<float>();
-    const Eigen::Vector3f origin = bim_T_velodyne.translation().cast<float>();
+    // One pose per firing sequence; its pulses span at most 48 µs (XT32; VLP-16 35 µs, OS1 0),
+    // < 0.06 mm at walking speed, well below the range noise.
+    const Eigen::Isometry3d bim_T_sensor =
+        motion_.BasePose(stamp + model_.FiringTime(k)) * base_T_sensor_;
+    const Eigen::Matrix3f rotation = bim_T_sensor.linear().cast<float>();
+    const Eigen::Vector3f origin = bim_T_sensor.translation().cast<float>();
     for (int laser = 0; laser < lasers; ++laser) {
       const int b = k * lasers + laser;
       if (masked_[b]) continue;
@@ -104,6 +105,7 @@ LidarScan ScanSimulator::Simulate(std::uint64_t index, double stamp) const {
     point.intensity = model_.Intensity(mesh_.reflectivity[hit.triangle], cos_incidence, noise);
     point.ring = model_.Ring(laser);
     point.time = static_cast<float>(model_.PulseTime(k, laser));
+    point.column = static_cast<std::uint32_t>(k);
     scan.points.push_back(point);
   }
   return scan;

@@ -72,7 +72,62 @@ std::string RouteChoice(const std::string& f, const std::vector<std::string>& ro
 
 }  // namespace
 
-std::string Vlp16Config::Validate() const {
+const char* ToString(LidarModelKind model) {
+  switch (model) {
+    case LidarModelKind::kVlp16:
+      return "vlp16";
+    case LidarModelKind::kOs1_64:
+      return "os1_64";
+    case LidarModelKind::kHesaiXt32:
+      return "hesai_xt32";
+  }
+  return "?";
+}
+
+std::optional<LidarModelKind> ParseLidarModel(const std::string& name) {
+  for (auto m : {LidarModelKind::kVlp16, LidarModelKind::kOs1_64, LidarModelKind::kHesaiXt32})
+    if (name == ToString(m)) return m;
+  return std::nullopt;
+}
+
+LidarConfig LidarConfig::For(LidarModelKind model) {
+  LidarConfig c;
+  c.model = model;
+  switch (model) {
+    case LidarModelKind::kVlp16:
+      break;
+    case LidarModelKind::kOs1_64:
+      // OS1 data sheet (rev 6/7): 0.5 m minimum range, 1 cm range precision (1σ) at indoor
+      // ranges, 1 mm range resolution; ouster-ros' intensity is signal photons (0..1000 here).
+      c.azimuth_resolution_deg = 360.0 / 1024.0;
+      c.min_range = 0.5;
+      c.max_range = 120.0;
+      c.range_noise_stddev = 0.01;
+      c.range_resolution = 0.001;
+      c.intensity_noise_stddev = 20.0;
+      break;
+    case LidarModelKind::kHesaiXt32:
+      // PandarXT-32 data sheet: 0.05-120 m, accuracy ±1 cm (precision 0.5 cm 1σ), 4 mm distance
+      // unit, 0.18° horizontal resolution at 10 Hz; intensity 0..255.
+      c.azimuth_resolution_deg = 0.18;
+      c.min_range = 0.05;
+      c.max_range = 120.0;
+      c.range_noise_stddev = 0.01;
+      c.range_resolution = 0.004;
+      c.intensity_noise_stddev = 5.0;
+      break;
+  }
+  return c;
+}
+
+std::string LidarConfig::Validate() const {
+  if (model == LidarModelKind::kOs1_64) {
+    const long columns = std::lround(360.0 / azimuth_resolution_deg);
+    if (columns != 512 && columns != 1024 && columns != 2048)
+      return "sensor.azimuth_resolution_deg: an OS1 runs 512, 1024 or 2048 columns per turn "
+             "(0.703125, 0.3515625 or 0.17578125 deg), got " +
+             std::to_string(azimuth_resolution_deg);
+  }
   return First({Positive("sensor.rotation_rate_hz", rotation_rate_hz, 20.0, "Hz"),
                 Positive("sensor.azimuth_resolution_deg", azimuth_resolution_deg, 10.0, "deg"),
                 Range("sensor.min_range", min_range, 0.0, 10.0, "m"),

@@ -64,12 +64,20 @@ KidnapConfig ParseKidnap(const YAML::Node& n) {
   return k;
 }
 
-void ParseSensor(const YAML::Node& n, Vlp16Config* s) {
+// `model` first: its data-sheet defaults, then the other keys over them.
+void ParseSensor(const YAML::Node& n, LidarConfig* s) {
   const std::string f = "sensor";
   CheckMap(n, f,
-           {"rotation_rate_hz", "azimuth_resolution_deg", "min_range", "max_range",
+           {"model", "rotation_rate_hz", "azimuth_resolution_deg", "min_range", "max_range",
             "range_noise_stddev", "range_resolution", "max_incidence_deg", "dropout_probability",
             "intensity_noise_stddev", "azimuth_offset_deg", "dropouts"});
+  if (n["model"]) {
+    const std::string name = As<std::string>(n["model"], f + ".model", "a string");
+    const auto model = ParseLidarModel(name);
+    if (!model)
+      Fail(f + ".model", "unknown model '" + name + "' (expected vlp16, os1_64 or hesai_xt32)");
+    *s = LidarConfig::For(*model);
+  }
   Get(n, f, "rotation_rate_hz", &s->rotation_rate_hz);
   Get(n, f, "azimuth_resolution_deg", &s->azimuth_resolution_deg);
   Get(n, f, "min_range", &s->min_range);

@@ -213,16 +213,17 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
   e = BuildMotion(sim.get(), config.duration * duration_scale);
   if (!e.empty()) return R::Error(e);
 
-  sim->sensor = std::make_unique<Vlp16Model>(config.sensor);
+  sim->sensor = std::make_unique<LidarModel>(config.sensor);
   if (!config.sensor.dropouts.empty()) {
     int dropped = 0;
     for (int k = 0; k < sim->NumScans(); ++k) dropped += sim->ScanDropped(k) ? 1 : 0;
     sim->log.push_back("sensor.dropouts: " + std::to_string(dropped) + " of " +
                        std::to_string(sim->NumScans()) + " scans not published");
   }
-  sim->base_T_velodyne.translation() = config.velodyne_offset;
+  sim->base_T_mount.translation() = config.velodyne_offset;
+  sim->base_T_sensor = sim->base_T_mount * sim->sensor->spec().mount_T_points;
   sim->scans = std::make_unique<ScanSimulator>(
-      *sim->embree, sim->scene, *sim->sensor, *sim->motion, sim->base_T_velodyne,
+      *sim->embree, sim->scene, *sim->sensor, *sim->motion, sim->base_T_sensor,
       BodyBox{config.body_center, config.body_size}, config.seed);
   return R::Ok(std::move(sim));
 }

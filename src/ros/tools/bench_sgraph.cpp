@@ -5,6 +5,7 @@
 //   bench_sgraph BAG [--building FILE.ifc|.agraph.json] [--storey S] [--keyframe-distance M]
 //                    [--min-plane-points N] [--max-iterations N] [--max-solver-time S]
 //                    [--wall-normal-cell M] [--wall-normal-max-angle-deg A] [--explain-plane ID]
+//                    [--cloud-layout auto|velodyne|ouster|hesai|robosense|xyzi]
 //
 // Quality: APE after evo's alignment (Umeyama SE(3), no scale) and after the gravity-aware one
 // (yaw + translation: both frames are z-up); planes and rooms are compared after the latter.
@@ -31,8 +32,8 @@
 #include <optional>
 #include <string>
 
+#include "../lidar_conversions.h"
 #include "../pose_conversions.h"
-#include "../velodyne_conversions.h"
 #include "bag_replay.h"
 #include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/agraph/ifc_conversion.h"
@@ -54,7 +55,8 @@ using bag_replay::Percentile;
 int Usage() {
   std::cerr << "usage: bench_sgraph BAG [--building FILE] [--storey S] [--keyframe-distance M]"
                " [--min-plane-points N] [--max-iterations N] [--max-solver-time S]"
-               " [--wall-normal-cell M] [--wall-normal-max-angle-deg A] [--explain-plane ID]\n";
+               " [--wall-normal-cell M] [--wall-normal-max-angle-deg A] [--explain-plane ID]"
+               " [--cloud-layout L]\n";
   return 2;
 }
 
@@ -97,6 +99,7 @@ int main(int argc, char** argv) {
   sgraph::BackendConfig backend;
   int min_plane_points_eval = 200;
   std::vector<int> explain;  // --explain-plane: plane ids whose observations are listed
+  ros_conversions::LidarCloudConfig cloud_config;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return Usage();
@@ -118,7 +121,9 @@ int main(int argc, char** argv) {
       frontend.wall_normal_cell = std::stod(argv[++i]);
     else if (a == "--explain-plane")
       explain.push_back(std::stoi(argv[++i]));
-    else
+    else if (a == "--cloud-layout") {
+      if (!bag_replay::ParseCloudLayout(argv[++i], &cloud_config)) return Usage();
+    } else
       return Usage();
   }
   if (const auto e = frontend.Validate(); !e.empty()) {
@@ -132,7 +137,8 @@ int main(int argc, char** argv) {
     std::cerr << "bench_sgraph: " << bag_path << ": " << e.what() << "\n";
     return 2;
   }
-  const Eigen::Isometry3d base_T_sensor = bag_replay::BaseTSensor(bag);
+  const bag_replay::StaticFrames static_frames(bag);
+  ros_conversions::LidarCloudReader cloud_reader(cloud_config);
   sgraph::SGraphBuilder builder(frontend, backend);
   std::vector<double> scan_ms, keyframe_ms, optimize_ms;
   std::vector<std::pair<int, double>> optimize_at;
@@ -151,9 +157,9 @@ int main(int argc, char** argv) {
       processing += Clock::now() - t0;
     } else if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) {
       const auto t0 = Clock::now();
-      const auto scan = ros_conversions::FromVelodyneMsg(*cloud);
+      const auto scan = bag_replay::ReadCloud(cloud_reader, *cloud, "bench_sgraph");
       if (!scan.ok()) continue;
-      const auto r = builder.AddScan(scan.value(), base_T_sensor);
+      const auto r = builder.AddScan(scan.value(), static_frames.BaseT(cloud->header.frame_id));
       const auto t1 = Clock::now();
       scan_ms.push_back(Ms(t1 - t0));
       if (r.status == sgraph::SGraphBuilder::ScanStatus::kKeyframe) {

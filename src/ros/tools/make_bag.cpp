@@ -2,9 +2,11 @@
 //
 //   make_bag SCENARIO.yaml -o OUT.bag [--duration-scale S] [--root DIR] [--compression C]
 //
-// Topics: velodyne_points (sensor_msgs/PointCloud2, XYZIRT, frame velodyne, 10 Hz), odom
-// (nav_msgs/Odometry, odom -> base_link, 50 Hz), tf (odom -> base_link), tf_static
-// (base_link -> velodyne, latched), ground_truth/pose (geometry_msgs/PoseStamped in bim, 50 Hz).
+// Topics: the LiDAR's cloud as its driver publishes it (lidar_cloud_writer.h; VLP-16:
+// velodyne_points, XYZIRT, frame velodyne, 10 Hz; OS1-64: ouster/points; XT32: hesai/pandar),
+// odom (nav_msgs/Odometry, odom -> base_link, 50 Hz), tf (odom -> base_link), tf_static
+// (base_link -> the sensor's frames, latched), ground_truth/pose (geometry_msgs/PoseStamped in
+// bim, 50 Hz).
 // Scans in `sensor.dropouts` windows are missing; a `kidnap` makes ground_truth/pose jump while
 // odom holds its pose.
 // The simulation is the ROS-free core (is_graphs/sim); this file only converts its outputs to
@@ -26,6 +28,7 @@
 #include "is_graphs/sim/scenario_yaml.h"
 #include "is_graphs/sim/simulation.h"
 #include "is_graphs/sim/simulation_runner.h"
+#include "lidar_cloud_writer.h"
 
 namespace {
 
@@ -77,47 +80,6 @@ geometry_msgs::Pose ToPose(const Eigen::Isometry3d& pose) {
   return p;
 }
 
-// The velodyne_pointcloud driver's XYZIRT layout: x y z intensity (float32), ring (uint16),
-// time (float32, after the header stamp); point_step 22, unorganized (height 1), dense.
-sensor_msgs::PointCloud2 ToCloud(const LidarScan& scan, const ros::Time& stamp) {
-  sensor_msgs::PointCloud2 cloud;
-  cloud.header.stamp = stamp;
-  cloud.header.frame_id = "velodyne";
-  const std::pair<const char*, std::pair<uint8_t, uint32_t>> fields[] = {
-      {"x", {sensor_msgs::PointField::FLOAT32, 0}},
-      {"y", {sensor_msgs::PointField::FLOAT32, 4}},
-      {"z", {sensor_msgs::PointField::FLOAT32, 8}},
-      {"intensity", {sensor_msgs::PointField::FLOAT32, 12}},
-      {"ring", {sensor_msgs::PointField::UINT16, 16}},
-      {"time", {sensor_msgs::PointField::FLOAT32, 18}}};
-  for (const auto& f : fields) {
-    sensor_msgs::PointField field;
-    field.name = f.first;
-    field.datatype = f.second.first;
-    field.offset = f.second.second;
-    field.count = 1;
-    cloud.fields.push_back(field);
-  }
-  cloud.point_step = 22;
-  cloud.height = 1;
-  cloud.width = static_cast<uint32_t>(scan.points.size());
-  cloud.row_step = cloud.point_step * cloud.width;
-  cloud.is_bigendian = false;
-  cloud.is_dense = true;
-  cloud.data.resize(cloud.row_step);
-  uint8_t* out = cloud.data.data();
-  for (const is_graphs::sim::LidarPoint& p : scan.points) {
-    std::memcpy(out + 0, &p.x, 4);
-    std::memcpy(out + 4, &p.y, 4);
-    std::memcpy(out + 8, &p.z, 4);
-    std::memcpy(out + 12, &p.intensity, 4);
-    std::memcpy(out + 16, &p.ring, 2);
-    std::memcpy(out + 18, &p.time, 4);
-    out += cloud.point_step;
-  }
-  return cloud;
-}
-
 nav_msgs::Odometry ToOdometry(const OdometrySample& s, const ros::Time& stamp) {
   nav_msgs::Odometry odom;
   odom.header.stamp = stamp;
@@ -154,7 +116,11 @@ geometry_msgs::TransformStamped Stamped(const Eigen::Isometry3d& pose, const ros
 // Writes the simulation's outputs as messages.
 class BagSink : public is_graphs::sim::SimulationSink {
  public:
-  BagSink(rosbag::Bag* bag, double t0) : bag_(bag), t0_(t0) {}
+  BagSink(rosbag::Bag* bag, const is_graphs::sim::LidarModel& lidar, double t0)
+      : bag_(bag),
+        lidar_(lidar),
+        topic_(is_graphs::sim_ros::DriverFor(lidar.config().model).topic),
+        t0_(t0) {}
 
   void OnOdometry(double t, const Eigen::Isometry3d& truth, const OdometrySample& s) override {
     const ros::Time stamp(t0_ + t);
@@ -170,12 +136,14 @@ class BagSink : public is_graphs::sim::SimulationSink {
   }
 
   void OnScan(const LidarScan& scan, double publish_time) override {
-    bag_->write("velodyne_points", ros::Time(t0_ + publish_time),
-                ToCloud(scan, ros::Time(t0_ + scan.stamp)));
+    bag_->write(topic_, ros::Time(t0_ + publish_time),
+                is_graphs::sim_ros::ToCloud(scan, lidar_, ros::Time(t0_ + scan.stamp)));
   }
 
  private:
   rosbag::Bag* bag_;
+  const is_graphs::sim::LidarModel& lidar_;
+  std::string topic_;
   double t0_;
 };
 
@@ -210,11 +178,15 @@ int Run(const Args& args) {
     (*latched)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
     (*latched)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
     tf2_msgs::TFMessage tf_static;
+    const auto driver = is_graphs::sim_ros::DriverFor(sim.config.sensor.model);
     tf_static.transforms.push_back(
-        Stamped(sim.base_T_velodyne, ros::Time(t0), "base_link", "velodyne"));
+        Stamped(sim.base_T_mount, ros::Time(t0), "base_link", driver.mount_frame));
+    if (driver.points_frame != driver.mount_frame)  // ouster-ros: os_sensor -> os_lidar
+      tf_static.transforms.push_back(Stamped(sim.sensor->spec().mount_T_points, ros::Time(t0),
+                                             driver.mount_frame, driver.points_frame));
     bag.write("tf_static", ros::Time(t0), tf_static, latched);
 
-    BagSink sink(&bag, t0);
+    BagSink sink(&bag, *sim.sensor, t0);
     const is_graphs::sim::RunStats stats = is_graphs::sim::RunSimulation(sim, sink);
     bag.close();
     if (!args.quiet) {

@@ -14,6 +14,8 @@
 //                                            each odometry reading, as sgraph_node's tf gives,
 //                                            PREFIX.json)
 //                   [--explain]  (the S-rooms against the BIM under the true motion)
+//                   [--cloud-layout auto|velodyne|ouster|hesai|robosense|xyzi]  (as
+//                                 sgraph_node's cloud_layout; default auto)
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -24,8 +26,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "../lidar_conversions.h"
 #include "../pose_conversions.h"
-#include "../velodyne_conversions.h"
 #include "bag_replay.h"
 #include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/agraph/ifc_conversion.h"
@@ -42,7 +44,7 @@ using bag_replay::WriteTum;
 
 int Usage() {
   std::cerr << "usage: replay_pipeline BAG --building FILE [--storey S] [--duration S] "
-               "[--out-prefix PREFIX] [--explain]\n";
+               "[--out-prefix PREFIX] [--explain] [--cloud-layout L]\n";
   return 2;
 }
 
@@ -60,6 +62,7 @@ int main(int argc, char** argv) {
   std::string bag_path = argv[1], building_path, storey, prefix;
   double max_duration = -1.0;
   bool explain = false;
+  ros_conversions::LidarCloudConfig cloud_config;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--explain") {
@@ -75,7 +78,13 @@ int main(int argc, char** argv) {
       max_duration = std::stod(argv[++i]);
     else if (a == "--out-prefix")
       prefix = argv[++i];
-    else
+    else if (a == "--cloud-layout") {
+      if (!bag_replay::ParseCloudLayout(argv[++i], &cloud_config)) {
+        std::cerr << "replay_pipeline: --cloud-layout must be one of "
+                  << ros_conversions::CloudLayoutChoices() << "\n";
+        return 2;
+      }
+    } else
       return Usage();
   }
   if (building_path.empty()) return Usage();
@@ -110,7 +119,8 @@ int main(int argc, char** argv) {
     std::cerr << "replay_pipeline: unusable A-Graph: " << e << "\n";
     return 2;
   }
-  const Eigen::Isometry3d base_T_sensor = bag_replay::BaseTSensor(bag);
+  const bag_replay::StaticFrames static_frames(bag);
+  ros_conversions::LidarCloudReader cloud_reader(cloud_config);
   std::FILE* pose_file =
       prefix.empty() ? nullptr : std::fopen((prefix + ".pose_bim.tum").c_str(), "w");
   std::FILE* truth_file =
@@ -151,9 +161,9 @@ int main(int argc, char** argv) {
       ++poses;
       if (pose_file) WriteTum(pose_file, stamp, *pose);
     } else if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) {
-      const auto scan = ros_conversions::FromVelodyneMsg(*cloud);
+      const auto scan = bag_replay::ReadCloud(cloud_reader, *cloud, "replay_pipeline");
       if (!scan.ok()) continue;
-      localization.AddScan(scan.value(), base_T_sensor);
+      localization.AddScan(scan.value(), static_frames.BaseT(cloud->header.frame_id));
       audit.Update(localization, truths, first);
       ever_merged = ever_merged || localization.localized();
     } else if (auto truth = m.instantiate<geometry_msgs::PoseStamped>()) {

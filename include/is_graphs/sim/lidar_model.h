@@ -1,11 +1,12 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <array>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <random>
 #include <vector>
 
+#include "is_graphs/sim/lidar_specs.h"
 #include "is_graphs/sim/scenario_config.h"
 
 namespace is_graphs {
@@ -22,45 +23,47 @@ struct ScanNoise {
   std::uniform_real_distribution<double> uniform{0.0, 1.0};
 };
 
-/// The Velodyne VLP-16 geometry and timing. Lasers fire in the order of the data sheet (laser
-/// id 0..15 at -15°, +1°, -13°, +3°, ... +15°), 2.304 µs apart; a firing sequence of all 16
-/// repeats every scan period / firings per scan (55.6 µs at 10 Hz, 0.2°). The head turns
-/// clockwise seen from above: azimuth a (clockwise from +x) is the direction yaw = -a in the
-/// `velodyne` frame (x forward, y left, z up). `ring` is the driver's: 0 for the lowest beam.
-class Vlp16Model {
+/// A spinning multi-beam LiDAR's geometry and timing (the beams of `LidarSpec`, the rate and
+/// azimuth step of `LidarConfig`). A firing sequence of all lasers repeats every scan period /
+/// firings per scan (a "column"); within one, laser i fires spec.laser_interval after laser
+/// i - 1 (0: all at once, as the Ouster). The head turns clockwise seen from above: azimuth a
+/// (clockwise from +x) is the direction yaw = -a in the sensor's point frame (x forward or, for
+/// the Ouster's os_lidar, backward; y left, z up).
+class LidarModel {
  public:
-  static constexpr int kLasers = 16;
-  static constexpr double kLaserInterval = 2.304e-6;  // s between two lasers of a sequence
+  explicit LidarModel(const LidarConfig& config);
 
-  explicit Vlp16Model(const Vlp16Config& config);
-
+  int Lasers() const { return static_cast<int>(spec_.elevation_deg.size()); }
   int FiringsPerScan() const { return firings_; }
   double ScanPeriod() const { return 1.0 / config_.rotation_rate_hz; }
   /// Start of firing sequence `firing` after the scan start, s.
   double FiringTime(int firing) const { return firing * firing_interval_; }
   /// Time of one laser's pulse after the scan start, s.
   double PulseTime(int firing, int laser) const {
-    return FiringTime(firing) + laser * kLaserInterval;
+    return FiringTime(firing) + laser * spec_.laser_interval;
   }
-  /// Unit beam direction in the velodyne frame.
+  /// Unit beam direction in the sensor's point frame.
   const Eigen::Vector3f& Direction(int firing, int laser) const {
-    return directions_[static_cast<std::size_t>(firing) * kLasers + laser];
+    return directions_[static_cast<std::size_t>(firing) * Lasers() + laser];
   }
-  /// Elevation (rad) and ring of a laser id.
+  /// Elevation (rad) and the driver's ring of a laser id.
   double Elevation(int laser) const;
-  std::uint16_t Ring(int laser) const;
+  std::uint16_t Ring(int laser) const { return spec_.ring[laser]; }
 
   /// The measured range for a surface at `true_range` hit at incidence cos `cos_incidence`:
   /// false when there is no return (out of range, grazing, dropout), else `range` is set
-  /// (Gaussian noise, quantized to the packet's 2 mm unit).
+  /// (Gaussian noise, quantized to the packet's distance unit).
   bool Measure(double true_range, double cos_incidence, ScanNoise& noise, double* range) const;
-  /// Diffuse intensity on the 0..100 scale from reflectivity (0..1) and incidence.
+  /// Diffuse intensity on the driver's scale (0..spec.intensity_scale) from reflectivity (0..1)
+  /// and incidence.
   float Intensity(double reflectivity, double cos_incidence, ScanNoise& noise) const;
 
-  const Vlp16Config& config() const { return config_; }
+  const LidarConfig& config() const { return config_; }
+  const LidarSpec& spec() const { return spec_; }
 
  private:
-  Vlp16Config config_;
+  LidarConfig config_;
+  LidarSpec spec_;
   int firings_;
   double firing_interval_;
   double cos_max_incidence_;

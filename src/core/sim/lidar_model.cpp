@@ -1,41 +1,34 @@
-#include "is_graphs/sim/vlp16_model.h"
+#include "is_graphs/sim/lidar_model.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace is_graphs {
 namespace sim {
-namespace {
-// Laser id -> elevation in degrees (VLP-16 user manual, table 9-1).
-constexpr std::array<int, Vlp16Model::kLasers> kElevationDeg{-15, 1, -13, 3,  -11, 5,  -9, 7,
-                                                             -7,  9, -5,  11, -3,  13, -1, 15};
-}  // namespace
 
-Vlp16Model::Vlp16Model(const Vlp16Config& config)
+LidarModel::LidarModel(const LidarConfig& config)
     : config_(config),
+      spec_(SpecFor(config.model)),
       firings_(static_cast<int>(std::lround(360.0 / config.azimuth_resolution_deg))),
       firing_interval_(1.0 / (config.rotation_rate_hz * firings_)),
       cos_max_incidence_(std::cos(config.max_incidence_deg * M_PI / 180.0)) {
-  directions_.resize(static_cast<std::size_t>(firings_) * kLasers);
+  const int lasers = Lasers();
+  directions_.resize(static_cast<std::size_t>(firings_) * lasers);
   for (int k = 0; k < firings_; ++k) {
     const double azimuth = (config_.azimuth_offset_deg + k * 360.0 / firings_) * M_PI / 180.0;
     const double yaw = -azimuth;  // clockwise rotation
-    for (int laser = 0; laser < kLasers; ++laser) {
+    for (int laser = 0; laser < lasers; ++laser) {
       const double el = Elevation(laser);
-      directions_[static_cast<std::size_t>(k) * kLasers + laser] =
+      directions_[static_cast<std::size_t>(k) * lasers + laser] =
           Eigen::Vector3d(std::cos(el) * std::cos(yaw), std::cos(el) * std::sin(yaw), std::sin(el))
               .cast<float>();
     }
   }
 }
 
-double Vlp16Model::Elevation(int laser) const { return kElevationDeg[laser] * M_PI / 180.0; }
+double LidarModel::Elevation(int laser) const { return spec_.elevation_deg[laser] * M_PI / 180.0; }
 
-std::uint16_t Vlp16Model::Ring(int laser) const {
-  return static_cast<std::uint16_t>((kElevationDeg[laser] + 15) / 2);
-}
-
-bool Vlp16Model::Measure(double true_range, double cos_incidence, ScanNoise& noise,
+bool LidarModel::Measure(double true_range, double cos_incidence, ScanNoise& noise,
                          double* range) const {
   if (!(true_range >= config_.min_range && true_range <= config_.max_range)) return false;
   if (cos_incidence < cos_max_incidence_) return false;
@@ -54,12 +47,13 @@ bool Vlp16Model::Measure(double true_range, double cos_incidence, ScanNoise& noi
   return true;
 }
 
-float Vlp16Model::Intensity(double reflectivity, double cos_incidence, ScanNoise& noise) const {
-  double value = 100.0 * reflectivity * cos_incidence;
+float LidarModel::Intensity(double reflectivity, double cos_incidence, ScanNoise& noise) const {
+  const double scale = spec_.intensity_scale;
+  double value = scale * reflectivity * cos_incidence;
   if (config_.intensity_noise_stddev > 0.0) {
     value += config_.intensity_noise_stddev * noise.Normal();
   }
-  return static_cast<float>(std::round(std::clamp(value, 0.0, 100.0)));
+  return static_cast<float>(std::round(std::clamp(value, 0.0, scale)));
 }
 
 }  // namespace sim
