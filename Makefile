@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo test bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching evaluate clean format
+.PHONY: all setup build demo test screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching evaluate clean format
 
 all: build
 
@@ -20,6 +20,11 @@ demo: build  ## BIM=path/to/building.ifc to load another building
 
 test: build
 	@bash scripts/test.sh
+
+# The README's pictures: rviz under Xvfb on the demo's bag -> docs/images/isgraph.png, and the
+# trajectory plot -> docs/images/trajectory.png. SCENARIO=, RATE=1, SHOT_AT=130 (bag seconds).
+screenshot: build
+	@bash scripts/screenshot.sh
 
 # Regenerates bim/*.ifc from bim/layouts/*.yaml.
 buildings: setup

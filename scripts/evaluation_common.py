@@ -72,8 +72,9 @@ def draw_plan(ax, agraph_path, storey=""):
             ax.plot([s["start"][0], s["end"][0]], [s["start"][1], s["end"][1]], color="0.45", lw=1.2)
     for r in graph["rooms"]:
         if str(r["storey"]) in storeys:
-            ax.text(r["center"][0], r["center"][1], r["name"], fontsize=7, color="0.35",
-                    ha="center", va="center")
+            ax.text(r["center"][0], r["center"][1], r["name"], fontsize=9, color="0.2",
+                    ha="center", va="center", zorder=5,
+                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.75})
     ax.set_aspect("equal")
     ax.set_xlabel("x [m] (bim)")
     ax.set_ylabel("y [m] (bim)")

@@ -15,17 +15,6 @@ using visualization_msgs::Marker;
 
 using ros_conversions::ToPoint;
 
-std_msgs::ColorRGBA OrientationColor(geometry::Orientation o, float alpha) {
-  switch (o) {
-    case geometry::Orientation::kX:
-      return Rgba(0.9f, 0.3f, 0.3f, alpha);
-    case geometry::Orientation::kY:
-      return Rgba(0.3f, 0.8f, 0.3f, alpha);
-    default:
-      return Rgba(0.3f, 0.5f, 0.95f, alpha);
-  }
-}
-
 Marker NewMarker(const AGraphMarkerStyle& style, const std::string& ns, int type, double scale) {
   return MakeMarker(style.frame_id, ns, type, scale, Rgba(1.f, 1.f, 1.f));
 }
@@ -59,7 +48,6 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
                           c = SurfaceCorner(s, true, true), d = SurfaceCorner(s, false, true);
     for (const Eigen::Vector3d& p : {a, b, c, a, c, d}) {
       surfaces.points.push_back(ToPoint(p));
-      surfaces.colors.push_back(OrientationColor(s.orientation, style.surface_alpha));
     }
     for (const auto& [p, q] :
          {std::make_pair(a, b), std::make_pair(b, c), std::make_pair(c, d), std::make_pair(d, a)}) {
@@ -67,12 +55,13 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
       outlines.points.push_back(ToPoint(q));
     }
   }
-  outlines.color = Rgba(0.2f, 0.2f, 0.2f, 0.8f);
+  surfaces.color = palette::AGraph(style.surface_alpha);
+  outlines.color = palette::AGraphLight(0.8f);
 
   Marker walls = NewMarker(style, "walls", Marker::SPHERE_LIST, style.node_scale);
-  walls.color = Rgba(0.95f, 0.6f, 0.1f, 1.f);
+  walls.color = palette::AGraphLight();
   Marker wall_edges = NewMarker(style, "wall_edges", Marker::LINE_LIST, style.line_width);
-  wall_edges.color = Rgba(0.95f, 0.6f, 0.1f, 0.6f);
+  wall_edges.color = palette::AGraphLight(0.5f);
   for (const auto& w : graph.walls) {
     const Eigen::Vector3d c = lifted(w.center, wall_z);
     walls.points.push_back(ToPoint(c));
@@ -84,11 +73,11 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
   }
 
   Marker rooms = NewMarker(style, "rooms", Marker::SPHERE_LIST, 2.0 * style.node_scale);
-  rooms.color = Rgba(0.6f, 0.2f, 0.8f, 1.f);
+  rooms.color = palette::AGraph();
   Marker room_outlines = NewMarker(style, "room_outlines", Marker::LINE_LIST, style.line_width);
-  room_outlines.color = Rgba(0.6f, 0.2f, 0.8f, 0.9f);
+  room_outlines.color = palette::AGraph(0.9f);
   Marker room_edges = NewMarker(style, "room_edges", Marker::LINE_LIST, 0.5 * style.line_width);
-  room_edges.color = Rgba(0.6f, 0.2f, 0.8f, 0.4f);
+  room_edges.color = palette::AGraph(0.5f);
   visualization_msgs::MarkerArray out;
   for (const auto& r : graph.rooms) {
     const Eigen::Vector3d c = lifted(r.center, room_z);
@@ -114,9 +103,9 @@ visualization_msgs::MarkerArray BuildAGraphMarkers(const agraph::AGraph& graph,
   }
 
   Marker doorways = NewMarker(style, "doorways", Marker::CUBE_LIST, style.node_scale);
-  doorways.color = Rgba(0.1f, 0.75f, 0.85f, 1.f);
+  doorways.color = palette::AGraphCyan();
   Marker doorway_edges = NewMarker(style, "doorway_edges", Marker::LINE_LIST, style.line_width);
-  doorway_edges.color = Rgba(0.1f, 0.75f, 0.85f, 0.6f);
+  doorway_edges.color = palette::AGraphCyan(0.6f);
   for (const auto& d : graph.doorways) {
     const Eigen::Vector3d p = lifted(d.position, room_z);
     doorways.points.push_back(ToPoint(p));

@@ -14,7 +14,7 @@ namespace ros_markers {
 struct AGraphMarkerStyle {
   std::string frame_id{"bim"};
   double layer_spacing{2.0};  // vertical distance between stacked layers [m]
-  double surface_alpha{0.35};
+  double surface_alpha{0.25};
   double node_scale{0.3};  // sphere diameter of graph nodes [m]
   double line_width{0.03};
   bool draw_names{true};

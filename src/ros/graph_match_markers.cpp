@@ -49,7 +49,7 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
   array.markers.push_back(clear);
 
   const bool unique = match.status == matching::MatchStatus::kUnique;
-  const auto colour = unique ? Rgba(0.1f, 0.9f, 0.2f) : Rgba(1.0f, 0.6f, 0.0f);
+  const auto colour = unique ? palette::Match() : palette::MatchOpen();
   const Eigen::Isometry3d& t = match.bim_T_map;
   const Eigen::Vector3d lift(0.0, 0.0, style.s_graph_lift);
   std::map<int, const sgraph::Room*> s_rooms;
@@ -58,8 +58,8 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
   for (const auto& p : s_graph.planes) s_planes.emplace(p.id, &p);
 
   auto rooms = Make(style, "room_pairs", visualization_msgs::Marker::LINE_LIST, colour,
-                    2.0 * style.line_width);
-  auto centres = Make(style, "s_rooms", visualization_msgs::Marker::SPHERE_LIST, colour, 0.3);
+                    3.0 * style.line_width);
+  auto centres = Make(style, "s_rooms", visualization_msgs::Marker::SPHERE_LIST, colour, 0.45);
   for (const auto& p : match.room_pairs) {
     const auto s = s_rooms.find(p.s_id);
     if (p.a_id < 0 || p.a_id >= static_cast<int>(a_graph.rooms.size()) || s == s_rooms.end())
@@ -92,17 +92,17 @@ visualization_msgs::MarkerArray BuildGraphMatchMarkers(const matching::GraphMatc
   }
 
   // Walls off the plan: from the A-surface's middle to the S-plane where it was built, in the
-  // BIM frame itself (not lifted), magenta.
+  // BIM frame itself (not lifted), red.
   auto deviations = Make(style, "deviations", visualization_msgs::Marker::LINE_LIST,
-                         Rgba(0.9f, 0.1f, 0.9f), 3.0 * style.line_width);
+                         palette::Deviation(), 3.0 * style.line_width);
   for (const auto& d : match.deviations)
     AddSurfaceLine(d.a_id, d.s_id, a_graph, s_planes, t, Eigen::Vector3d::Zero(), &deviations);
 
-  auto text = Make(style, "status", visualization_msgs::Marker::TEXT_VIEW_FACING, colour, 0.8);
+  auto text = Make(style, "status", visualization_msgs::Marker::TEXT_VIEW_FACING, colour, 0.5);
   Eigen::Vector3d text_at = Eigen::Vector3d::Zero();
   for (const auto& r : a_graph.rooms)
     text_at += r.center / std::max<size_t>(1, a_graph.rooms.size());
-  text.pose.position = ToPoint(text_at + lift + Eigen::Vector3d(0, 0, 2.0));
+  text.pose.position = ToPoint(text_at + lift + Eigen::Vector3d(0, 0, 8.0));  // over the layers
   text.text = std::string(matching::ToString(match.status)) + " (" +
               std::to_string(match.hypotheses) + " hypotheses, S-Graph rev " +
               std::to_string(match.s_graph_revision) + ")";

@@ -13,7 +13,7 @@ namespace ros_markers {
 
 struct GraphMatchMarkerStyle {
   std::string frame_id{"bim"};
-  double s_graph_lift{3.0};  // the S-Graph drawn this far above the A-Graph [m]
+  double s_graph_lift{3.5};  // the S-Graph drawn this far above the A-Graph [m] (as the iS-Graph)
   double line_width{0.05};
 };
 

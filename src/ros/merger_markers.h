@@ -14,7 +14,7 @@ namespace ros_markers {
 
 struct MergerMarkerStyle {
   std::string frame_id{"bim"};
-  double s_graph_lift{2.0};  // m: the S-Graph layer drawn this far above the A-Graph
+  double s_graph_lift{3.5};  // m: the S-Graph layer drawn this far above the A-Graph
 };
 
 /// The iS-Graph in the bim frame: the A-Graph (wall-surfaces, room centres), the S-Graph moved

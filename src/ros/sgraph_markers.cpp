@@ -12,28 +12,8 @@ namespace {
 using visualization_msgs::Marker;
 
 Marker MakeMarker(const SGraphMarkerStyle& style, const std::string& ns, int type, double scale,
-                  float r, float g, float b, float a = 1.0f) {
-  return ros_markers::MakeMarker(style.frame_id, ns, type, scale, Rgba(r, g, b, a));
-}
-
-std_msgs::ColorRGBA PlaneColor(geometry::Orientation o) {
-  std_msgs::ColorRGBA c;
-  c.a = 0.5f;
-  switch (o) {
-    case geometry::Orientation::kX:
-      c.r = 0.9f, c.g = 0.3f, c.b = 0.3f;
-      break;
-    case geometry::Orientation::kY:
-      c.r = 0.3f, c.g = 0.5f, c.b = 0.95f;
-      break;
-    case geometry::Orientation::kHorizontal:
-      c.r = 0.6f, c.g = 0.6f, c.b = 0.6f, c.a = 0.2f;
-      break;
-    default:
-      c.r = 0.95f, c.g = 0.75f, c.b = 0.2f;
-      break;
-  }
-  return c;
+                  const std_msgs::ColorRGBA& colour) {
+  return ros_markers::MakeMarker(style.frame_id, ns, type, scale, colour);
 }
 
 }  // namespace
@@ -52,36 +32,34 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
   const double floor_layer = room_layer + style.layer_spacing;
 
   Marker keyframes =
-      MakeMarker(style, "keyframes", Marker::SPHERE_LIST, style.node_scale, 0.2f, 0.9f, 0.3f);
-  Marker odom =
-      MakeMarker(style, "odometry_edges", Marker::LINE_STRIP, style.line_width, 0.2f, 0.9f, 0.3f);
+      MakeMarker(style, "keyframes", Marker::SPHERE_LIST, style.node_scale, palette::SGraphDark());
+  Marker odom = MakeMarker(style, "odometry_edges", Marker::LINE_STRIP, style.line_width,
+                           palette::SGraphDark());
   std::map<int, Eigen::Vector3d> keyframe_at;
   for (const auto& k : graph.keyframes) {
     keyframe_at[k.id] = k.pose.translation();
     keyframes.points.push_back(ToPoint(k.pose.translation()));
     odom.points.push_back(ToPoint(k.pose.translation()));
   }
-  Marker planes = MakeMarker(style, "planes", Marker::TRIANGLE_LIST, 1.0, 1, 1, 1);
-  Marker plane_nodes =
-      MakeMarker(style, "plane_nodes", Marker::SPHERE_LIST, style.node_scale, 0.95f, 0.6f, 0.1f);
+  Marker planes = MakeMarker(style, "planes", Marker::TRIANGLE_LIST, 1.0, palette::SGraph(0.75f));
+  Marker plane_nodes = MakeMarker(style, "plane_nodes", Marker::SPHERE_LIST, style.node_scale,
+                                  palette::SGraphLight());
   std::map<int, Eigen::Vector3d> plane_node_at;
   for (const auto& p : graph.planes) {
     if (p.orientation == geometry::Orientation::kHorizontal) continue;
     const Eigen::Vector3d a(p.start.x(), p.start.y(), p.z_min), b(p.end.x(), p.end.y(), p.z_min);
     const Eigen::Vector3d up(0, 0, std::max(p.z_max - p.z_min, 0.05));
-    const auto c = PlaneColor(p.orientation);
-    for (const Eigen::Vector3d& v :
-         {a, b, Eigen::Vector3d(b + up), a, Eigen::Vector3d(b + up), Eigen::Vector3d(a + up)}) {
+    // Both windings: rviz culls back faces, and a plane is seen from either side.
+    const Eigen::Vector3d c = b + up, d = a + up;
+    for (const Eigen::Vector3d& v : {a, b, c, a, c, d, a, c, b, a, d, c})
       planes.points.push_back(ToPoint(v));
-      planes.colors.push_back(c);
-    }
     Eigen::Vector3d node = 0.5 * (a + b);
     node.z() = plane_layer;
     plane_node_at[p.id] = node;
     plane_nodes.points.push_back(ToPoint(node));
   }
   Marker observations = MakeMarker(style, "observation_edges", Marker::LINE_LIST,
-                                   style.line_width * 0.5, 0.6f, 0.6f, 0.6f, 0.4f);
+                                   style.line_width * 0.5, palette::SGraphLight(0.25f));
   for (const auto& o : graph.observations) {
     auto k = keyframe_at.find(o.keyframe);
     auto p = plane_node_at.find(o.plane);
@@ -90,11 +68,11 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
     observations.points.push_back(ToPoint(p->second));
   }
   Marker rooms =
-      MakeMarker(style, "rooms", Marker::SPHERE_LIST, 2.0 * style.node_scale, 0.8f, 0.2f, 0.9f);
-  Marker corridors =
-      MakeMarker(style, "corridors", Marker::SPHERE_LIST, 2.0 * style.node_scale, 0.2f, 0.8f, 0.9f);
+      MakeMarker(style, "rooms", Marker::SPHERE_LIST, 2.0 * style.node_scale, palette::SGraph());
+  Marker corridors = MakeMarker(style, "corridors", Marker::SPHERE_LIST, 2.0 * style.node_scale,
+                                palette::SGraphLight());
   Marker room_edges =
-      MakeMarker(style, "room_edges", Marker::LINE_LIST, style.line_width, 0.8f, 0.2f, 0.9f, 0.7f);
+      MakeMarker(style, "room_edges", Marker::LINE_LIST, style.line_width, palette::SGraph(0.7f));
   std::map<int, Eigen::Vector3d> room_at;
   for (const auto& r : graph.rooms) {
     const Eigen::Vector3d c(r.center.x(), r.center.y(), room_layer);
@@ -107,10 +85,10 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
       room_edges.points.push_back(ToPoint(p->second));
     }
   }
-  Marker floor =
-      MakeMarker(style, "floor", Marker::SPHERE_LIST, 3.0 * style.node_scale, 0.9f, 0.9f, 0.9f);
-  Marker floor_edges =
-      MakeMarker(style, "floor_edges", Marker::LINE_LIST, style.line_width, 0.9f, 0.9f, 0.9f, 0.7f);
+  Marker floor = MakeMarker(style, "floor", Marker::SPHERE_LIST, 3.0 * style.node_scale,
+                            palette::SGraphLight());
+  Marker floor_edges = MakeMarker(style, "floor_edges", Marker::LINE_LIST, style.line_width,
+                                  palette::SGraphLight(0.7f));
   for (const auto& f : graph.floors) {
     const Eigen::Vector3d c(f.center.x(), f.center.y(), floor_layer);
     floor.points.push_back(ToPoint(c));
@@ -123,10 +101,10 @@ visualization_msgs::MarkerArray BuildSGraphMarkers(const sgraph::SGraph& graph,
   }
   // Doorways walked through: a bar across the gap at floor height (0.9 m when the width is not
   // known), and a line up to each room it joins.
-  Marker doorways =
-      MakeMarker(style, "doorways", Marker::LINE_LIST, 3.0 * style.line_width, 1.0f, 0.6f, 0.0f);
+  Marker doorways = MakeMarker(style, "doorways", Marker::LINE_LIST, 3.0 * style.line_width,
+                               palette::SGraphLight());
   Marker doorway_edges = MakeMarker(style, "doorway_edges", Marker::LINE_LIST, style.line_width,
-                                    1.0f, 0.6f, 0.0f, 0.7f);
+                                    palette::SGraphLight(0.7f));
   std::map<int, const sgraph::Plane*> plane_by_id;
   for (const auto& p : graph.planes) plane_by_id[p.id] = &p;
   for (const auto& d : graph.doorways) {

@@ -17,7 +17,7 @@ struct SGraphMarkerStyle {
 };
 
 /// The S-Graph in layers: keyframes and odometry edges at their poses; wall planes as their
-/// mapped extents (quads, coloured by orientation) and plane nodes one layer up; rooms and
+/// mapped extents (translucent quads) and plane nodes one layer up; rooms and
 /// corridors a layer above with edges to their planes; the floor on top with edges to the
 /// rooms. Namespaces: keyframes, odometry_edges, planes, plane_nodes, observation_edges,
 /// rooms, corridors, room_edges, floor, floor_edges.

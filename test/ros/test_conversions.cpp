@@ -190,7 +190,7 @@ TEST(GraphMatchConversions, RoundTripKeepsPairsAndDeviations) {
 }
 
 // A wall off the plan is drawn in the BIM frame (not lifted): from the A-surface's middle to
-// the S-plane, magenta, in its own namespace; surface pairs lifted by s_graph_lift.
+// the S-plane, red, in its own namespace; surface pairs lifted by s_graph_lift.
 TEST(GraphMatchMarkers, DeviationsFromThePlannedFaceToTheBuiltOne) {
   agraph::AGraph a;
   agraph::WallSurface face;

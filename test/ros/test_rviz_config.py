@@ -1,5 +1,6 @@
 """config/is_graphs.rviz loads in a real rviz under Xvfb and draws the A-Graph and the robot:
 a screenshot of the 3-D view that is not empty. Runs roslaunch with a master of its own."""
+import colorsys
 import os
 import shutil
 import signal
@@ -75,7 +76,9 @@ def test_the_3d_view_shows_the_a_graph_and_the_robot(screenshot):
                      and abs(p[2] - 48) < 6)
     drawn = 1.0 - background / len(pixels)
     surfaces = sum(1 for r, g, b in pixels if b > 150 and b > r + 60)       # wall-surfaces
-    robot = sum(1 for r, g, b in pixels if r > 180 and g > 130 and b < 80)  # yellow body
+    # The yellow body, lit from the camera's side: hue 40-56 deg, saturated, not dark.
+    hsv = [colorsys.rgb_to_hsv(r / 255, g / 255, b / 255) for r, g, b in pixels]
+    robot = sum(1 for h, s, v in hsv if 40 <= h * 360 <= 56 and s > 0.6 and v > 0.45)
     assert drawn > 0.05, f"the 3-D view is empty ({drawn:.1%} drawn): {png}"
     assert surfaces > 2000, f"no A-Graph wall-surfaces drawn ({surfaces} px): {png}"
     assert robot > 20, f"no robot model drawn ({robot} px): {png}"
