@@ -7,12 +7,12 @@ import re
 import pytest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
-# The file that reads a node's parameters, and the README heading of the node's section.
+# The files that read a node's parameters, and the README heading of the node's section.
 NODES = {
-    "agraph_node": "src/ros/agraph_node.cpp",
-    "sgraph_node": "src/ros/sgraph_node.cpp",
-    "matcher_node": "src/ros/matcher_node.cpp",
-    "merger_node": "src/ros/merger_params.cpp",
+    "agraph_node": ["src/ros/agraph_node.cpp"],
+    "sgraph_node": ["src/ros/sgraph_node.cpp", "src/ros/sgraph_params.cpp"],
+    "matcher_node": ["src/ros/matcher_node.cpp"],
+    "merger_node": ["src/ros/merger_params.cpp"],
 }
 READ = re.compile(r'(?:Read|RequireString|ReadParam\w*)\(\s*pnh\s*,\s*"([a-z0-9_]+)"')
 
@@ -32,7 +32,7 @@ def section(readme, node):
 
 @pytest.mark.parametrize("node", sorted(NODES))
 def test_every_parameter_the_node_reads_is_in_its_table(node):
-    params = set(READ.findall(text(NODES[node])))
+    params = {name for path in NODES[node] for name in READ.findall(text(path))}
     assert params, f"no parameters found in {NODES[node]} (has the reading changed?)"
     rows = [line for line in section(text("README.md"), node).splitlines() if line.startswith("| `")]
     documented = {name for row in rows for name in re.findall(r"`([a-z0-9_]+)`", row.split("|")[1])}
