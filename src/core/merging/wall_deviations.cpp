@@ -152,15 +152,19 @@ std::vector<WallDeviation> ClassifyWalls(const agraph::AGraph& building,
   std::vector<detail::PlaneInB> planes = detail::PlanesInB(graph, bim_T_map);
   std::vector<bool> explained;
   std::map<int, SurfaceFit> best = BestFits(surfaces, planes, config, &explained);
+  // A wall's faces are one piece of evidence: each weighs its overlap / the faces seen.
+  std::map<int, int> faces_seen;
+  for (const auto& [id, f] : best) ++faces_seen[surfaces[id]->wall];
   std::vector<detail::SeenSurface> seen;
   for (const auto& [id, f] : best) {
     const agraph::WallSurface& s = *surfaces[id];
     seen.push_back({s.plane.normal.head<2>().normalized(), 0.5 * (s.start + s.end), f.offset,
-                    f.angle, f.overlap});
+                    f.angle, f.overlap / faces_seen[s.wall]});
   }
+  // Robust scales half the AS_PLANNED tolerances: a wall off by more hardly pulls.
   const Eigen::Isometry3d corrected =
-      detail::ConsensusCorrection(seen, config.planned_offset,
-                                  config.planned_angle_deg * kDegToRad) *
+      detail::ConsensusCorrection(seen, 0.5 * config.planned_offset,
+                                  0.5 * config.planned_angle_deg * kDegToRad) *
       bim_T_map;
   planes = detail::PlanesInB(graph, corrected);
   best = BestFits(surfaces, planes, config, &explained);
