@@ -50,6 +50,7 @@ struct WallDeviation {
   Eigen::Vector2d end{Eigen::Vector2d::Zero()};
   int rays_through{0};  // sight lines / walked steps through where it should stand
   double height{0.0};   // m: EXTRA: the vertical extent seen
+  Eigen::Vector2d normal{Eigen::Vector2d::UnitX()};  // the offset's direction (EXTRA: its face's)
 };
 
 /// Classifies every wall of `building` (one storey, as the merger holds it) against the S-Graph

@@ -63,6 +63,7 @@ std::vector<WallDeviation> Extras(const std::vector<detail::PlaneInB>& planes,
     e.status = WallStatus::kExtra;
     e.s_planes = {p.id};
     e.height = p.height;
+    e.normal = p.normal;
     const Eigen::Vector2d t = (p.end - p.start).normalized();
     double lo = 0.0, hi = p.Length();
     for (int j : candidates) {  // the wall's other face: opposed, within a wall's thickness
@@ -184,6 +185,7 @@ std::vector<WallDeviation> ClassifyWalls(const agraph::AGraph& building,
     if (!first || z_robot < first->z_min - 0.5 || z_robot > first->z_max) continue;  // storey
     const Eigen::Vector2d n_first = first->plane.normal.head<2>().normalized();
     const double along = a ? 1.0 : -1.0;  // offsets along surface_a's normal
+    r.normal = along * n_first;
     r.start = first->start - along * 0.5 * w.thickness * n_first;
     r.end = first->end - along * 0.5 * w.thickness * n_first;
     double weight = 0.0, offset = 0.0, angle = 0.0;

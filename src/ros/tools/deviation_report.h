@@ -48,6 +48,7 @@ inline bool WriteDeviations(const std::string& path, const agraph::AGraph& build
                     {"sigma_m", w.sigma},
                     {"start", {w.start.x(), w.start.y()}},
                     {"end", {w.end.x(), w.end.y()}},
+                    {"normal", {w.normal.x(), w.normal.y()}},
                     {"length_m", (w.end - w.start).norm()},
                     {"s_planes", w.s_planes},
                     {"rays_through", w.rays_through},
