@@ -26,7 +26,7 @@ struct WallDeviationConfig {
   double max_angle_deg{20.0};    // ... nor one turned more
   double min_overlap{0.5};       // m of the A-surface's length an S-plane must cover
   double extra_min_length{1.0};  // m: an unmatched S-plane shorter is clutter, not a wall
-  double extra_min_height{2.0};  // m of vertical extent seen (clutter is lower)
+  double extra_min_height{1.85};  // m of vertical extent seen (clutter is lower)
   double door_margin{0.15};      // m beyond a doorway's half-width: sight lines pass there
   int not_built_min_rays{2};     // sight lines through the wall for NOT_BUILT
 
