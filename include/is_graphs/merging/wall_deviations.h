@@ -22,13 +22,13 @@ const char* ToString(WallStatus status);
 struct WallDeviationConfig {
   double planned_offset{0.03};  // m: within this (and planned_angle_deg): AS_PLANNED
   double planned_angle_deg{1.0};
-  double max_offset{0.6};        // m: an S-plane farther off is not this wall
-  double max_angle_deg{20.0};    // ... nor one turned more
-  double min_overlap{0.5};       // m of the A-surface's length an S-plane must cover
-  double extra_min_length{1.0};  // m: an unmatched S-plane shorter is clutter, not a wall
+  double max_offset{0.6};         // m: an S-plane farther off is not this wall
+  double max_angle_deg{20.0};     // ... nor one turned more
+  double min_overlap{0.5};        // m of the A-surface's length an S-plane must cover
+  double extra_min_length{1.0};   // m: an unmatched S-plane shorter is clutter, not a wall
   double extra_min_height{1.85};  // m of vertical extent seen (clutter is lower)
-  double door_margin{0.15};      // m beyond a doorway's half-width: sight lines pass there
-  int not_built_min_rays{2};     // sight lines through the wall for NOT_BUILT
+  double door_margin{0.15};       // m beyond a doorway's half-width: sight lines pass there
+  int not_built_min_rays{2};      // sight lines through the wall for NOT_BUILT
 
   /// "" when valid, else "<parameter>: <what is wrong>".
   std::string Validate() const;
