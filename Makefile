@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo test screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching evaluate clean format
+.PHONY: all setup build demo report test screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching evaluate clean format
 
 all: build
 
@@ -17,6 +17,11 @@ build: setup
 
 demo: build  ## BIM=path/to/building.ifc to load another building
 	@bash scripts/demo.sh
+
+# As built against as planned (issue 21): .ws/report/<name>/ deviations.csv, deviations.bcf,
+# plan.png. SCENARIO=bags/X.yaml (default D4), or BAG=own.bag BIM=building.ifc [STOREY=..].
+report: build
+	@bash scripts/report.sh
 
 test: build
 	@bash scripts/test.sh

@@ -59,3 +59,5 @@ roslaunch -p "${ROS_MASTER_URI##*:}" is_graphs localize.launch bim:="${building}
 for _ in $(seq 1 50); do [ -f "${out}/run.bag" ] && break; sleep 0.1; done
 "${py}" scripts/evaluate_run.py "${out}/run.bag" --agraph "${agraph}" --storey "${storey}" \
   --plot "${out}/trajectory.png" --json "${out}/results.json"
+# As built against the plan (issue 21): the last `deviations` of the run.
+"${py}" scripts/deviation_summary.py "${out}/run.bag"

@@ -190,7 +190,7 @@ def main():
     from evaluation_report import write_reports
 
     yamls = args.scenarios or sorted(
-        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml")
+        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml", "S*.yaml")
         for y in glob.glob(os.path.join(REPO, "bags", pattern)) if not y.endswith("_short.yaml"))
     if not os.access(args.replay, os.X_OK):
         print(f"evaluate: error: {args.replay} not built (make build)", file=sys.stderr)

@@ -13,6 +13,7 @@ NODES = {
     "sgraph_node": ["src/ros/sgraph_node.cpp", "src/ros/sgraph_params.cpp"],
     "matcher_node": ["src/ros/matcher_node.cpp"],
     "merger_node": ["src/ros/merger_params.cpp"],
+    "deviation_node": ["src/ros/deviation_node.cpp"],
 }
 READ = re.compile(r'(?:Read|RequireString|ReadParam\w*)\(\s*pnh\s*,\s*"([a-z0-9_]+)"')
 

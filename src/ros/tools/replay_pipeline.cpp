@@ -16,6 +16,9 @@
 //                   [--explain]  (the S-rooms against the BIM under the true motion)
 //                   [--cloud-layout auto|velodyne|ouster|hesai|robosense|xyzi]  (as
 //                                 sgraph_node's cloud_layout; default auto)
+//                   [--deviations FILE.json]  (issue 21: each wall as built against the plan
+//                                 under the final merge, deviation_report.h; exit 3 and no file
+//                                 when the bag never localized)
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -29,6 +32,7 @@
 #include "../lidar_conversions.h"
 #include "../pose_conversions.h"
 #include "bag_replay.h"
+#include "deviation_report.h"
 #include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/agraph/ifc_conversion.h"
 #include "is_graphs/geometry/se3.h"
@@ -44,7 +48,7 @@ using bag_replay::WriteTum;
 
 int Usage() {
   std::cerr << "usage: replay_pipeline BAG --building FILE [--storey S] [--duration S] "
-               "[--out-prefix PREFIX] [--explain] [--cloud-layout L]\n";
+               "[--out-prefix PREFIX] [--explain] [--cloud-layout L] [--deviations FILE]\n";
   return 2;
 }
 
@@ -59,7 +63,7 @@ nlohmann::json Stats(const std::vector<double>& v) {
 
 int main(int argc, char** argv) {
   if (argc < 2) return Usage();
-  std::string bag_path = argv[1], building_path, storey, prefix;
+  std::string bag_path = argv[1], building_path, storey, prefix, deviations_path;
   double max_duration = -1.0;
   bool explain = false;
   ros_conversions::LidarCloudConfig cloud_config;
@@ -78,6 +82,8 @@ int main(int argc, char** argv) {
       max_duration = std::stod(argv[++i]);
     else if (a == "--out-prefix")
       prefix = argv[++i];
+    else if (a == "--deviations")
+      deviations_path = argv[++i];
     else if (a == "--cloud-layout") {
       if (!bag_replay::ParseCloudLayout(argv[++i], &cloud_config)) {
         std::cerr << "replay_pipeline: --cloud-layout must be one of "
@@ -242,6 +248,9 @@ int main(int argc, char** argv) {
   std::printf("real-time factor %.1fx (wall %.1f s), peak RSS %.1f MiB\n", (last - first) / wall,
               wall, bag_replay::PeakRssKb() / 1024.0);
   if (explain) bag_replay::ExplainMatch(building, graph, truths, config.matcher);
+  if (!deviations_path.empty() &&
+      !bag_replay::WriteDeviations(deviations_path, building, graph, localization))
+    return 3;
   if (!prefix.empty()) {
     std::ofstream(prefix + ".json") << out.dump(2) << "\n";
     if (!bag_replay::WriteKeyframesTum(graph, prefix + ".sgraph.tum")) {

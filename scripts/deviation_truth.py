@@ -1,0 +1,96 @@
+"""The simulator's known deviations (a bags/ scenario's scene.deviations) against a report.
+
+move_wall (offset along the wall's first surface normal), rotate_wall (angle_deg about its
+centre), remove_wall (NOT_BUILT), add_wall (EXTRA). Measures: every deviation >= 5 cm or >= 2 deg
+found with the right status; offset and angle RMSE over the MOVED walls; walls on the plan
+reported MOVED; NOT_BUILT claimed for a wall that was built; added walls >= 1 m found (EXTRA
+within 0.3 m of them) and EXTRA reports no added wall explains.
+"""
+import math
+
+import yaml
+
+
+def _truth(scenario_path):
+    with open(scenario_path) as f:
+        scene = (yaml.safe_load(f) or {}).get("scene") or {}
+    walls, extras = {}, []
+    for d in scene.get("deviations") or []:
+        kind = d.get("type")
+        if kind in ("move_wall", "rotate_wall", "remove_wall"):
+            t = walls.setdefault(str(d["wall"]), {"status": "MOVED", "offset_m": 0.0,
+                                                  "angle_deg": 0.0})
+            if kind == "move_wall":
+                t["offset_m"] += float(d["offset"])
+            elif kind == "rotate_wall":
+                t["angle_deg"] += float(d["angle_deg"])
+            else:
+                t["status"] = "NOT_BUILT"
+        elif kind == "add_wall":
+            extras.append({"start": [float(v) for v in d["start"]],
+                           "end": [float(v) for v in d["end"]]})
+    return walls, extras
+
+
+def _explains(added, w, tolerance=0.3):
+    """Whether the EXTRA report w lies along the added wall (within tolerance, inside it)."""
+    (ax, ay), (bx, by) = added["start"], added["end"]
+    length = math.hypot(bx - ax, by - ay)
+    tx, ty = (bx - ax) / length, (by - ay) / length
+    mx = 0.5 * (w["start"][0] + w["end"][0])
+    my = 0.5 * (w["start"][1] + w["end"][1])
+    along = (mx - ax) * tx + (my - ay) * ty
+    across = abs(-(mx - ax) * ty + (my - ay) * tx)
+    return across <= tolerance and -tolerance <= along <= length + tolerance
+
+
+def compare(walls, scenario_path):
+    truth, extras = _truth(scenario_path)
+    rows, off_err, ang_err = [], [], []
+    missed, false_moved, false_not_built = [], [], []
+    for w in walls:
+        if w["wall_id"] < 0:
+            continue
+        t = truth.get(w["name"]) or truth.get(str(w["wall_id"])) or {
+            "status": "AS_PLANNED", "offset_m": 0.0, "angle_deg": 0.0}
+        row = {"wall": w["name"], "guid": w["guid"], "truth": t["status"], "reported": w["status"],
+               "truth_offset_m": t["offset_m"], "truth_angle_deg": t["angle_deg"],
+               "offset_m": w["offset_m"], "angle_deg": w["angle_deg"]}
+        rows.append(row)
+        big = abs(t["offset_m"]) >= 0.05 or abs(t["angle_deg"]) >= 2.0
+        if t["status"] == "NOT_BUILT" or (t["status"] == "MOVED" and big):
+            if w["status"] != t["status"]:
+                missed.append(w["name"])
+        if t["status"] == "MOVED" and w["status"] == "MOVED":
+            off_err.append(w["offset_m"] - t["offset_m"])
+            ang_err.append(w["angle_deg"] - t["angle_deg"])
+        small = abs(t["offset_m"]) <= 0.02 and abs(t["angle_deg"]) <= 0.5
+        if t["status"] != "NOT_BUILT" and small and w["status"] == "MOVED":
+            false_moved.append(w["name"])
+        if w["status"] == "NOT_BUILT" and t["status"] != "NOT_BUILT":
+            false_not_built.append(w["name"])
+    reported_extra = [w for w in walls if w["status"] == "EXTRA"]
+    long_extras = [e for e in extras
+                   if math.hypot(e["end"][0] - e["start"][0], e["end"][1] - e["start"][1]) >= 1.0]
+    found = [e for e in long_extras if any(_explains(e, w) for w in reported_extra)]
+    unexplained = [w for w in reported_extra if not any(_explains(e, w) for e in extras)]
+
+    def rmse(v):
+        return math.sqrt(sum(x * x for x in v) / len(v)) if v else 0.0
+
+    return {"walls": rows, "missed": missed, "false_moved": false_moved,
+            "false_not_built": false_not_built, "offset_rmse_m": rmse(off_err),
+            "angle_rmse_deg": rmse(ang_err), "moved_measured": len(off_err),
+            "extra_walls": len(long_extras), "extra_found": len(found),
+            "extra_unexplained": len(unexplained),
+            "deviations": sum(1 for t in truth.values()) + len(extras)}
+
+
+def format_summary(r):
+    return ("against the scenario's %d known deviations: missed %d %s, offset RMSE %.1f cm and "
+            "angle RMSE %.2f° over %d MOVED walls, false MOVED %d %s, false NOT_BUILT %d %s, "
+            "EXTRA found %d of %d (>= 1 m), EXTRA unexplained %d" % (
+                r["deviations"], len(r["missed"]), r["missed"], 100 * r["offset_rmse_m"],
+                r["angle_rmse_deg"], r["moved_measured"], len(r["false_moved"]), r["false_moved"],
+                len(r["false_not_built"]), r["false_not_built"], r["extra_found"],
+                r["extra_walls"], r["extra_unexplained"]))
