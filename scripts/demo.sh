@@ -17,29 +17,17 @@ scenario="${SCENARIO:-bags/D5_rotated.yaml}"
 rate="${RATE:-2}"
 rviz="${RVIZ:-false}"
 py="${root}/.venv/bin/python3"
+# shellcheck source=scripts/scenario_lib.sh
+source scripts/scenario_lib.sh
 [ -f "${scenario}" ] || { echo "demo: error: no scenario file ${scenario}" >&2; exit 2; }
 name="$(basename "${scenario}" .yaml)"
-bag="bags/${name}.bag"
 out=".ws/demo/${name}"
 mkdir -p "${out}" "${ROS_HOME}"
 
-if [ ! -f "${bag}" ] || [ "${scenario}" -nt "${bag}" ]; then
-  echo "demo: making ${bag} from ${scenario}"
-  .ws/devel/lib/is_graphs/make_bag "${scenario}" -o "${bag}" --quiet
-fi
+scenario_bag demo "${scenario}"
 
-read -r building storey < <("${py}" - "${scenario}" <<'PYEOF'
-import sys, yaml
-s = yaml.safe_load(open(sys.argv[1]))
-print(s["building"], str(s.get("storey", "")) or '""')
-PYEOF
-)
-[ "${storey}" = '""' ] && storey=""
-case "${building}" in /*) ;; *) building="${root}/${building}" ;; esac
-agraph="${building}"
-if [[ "${building,,}" == *.ifc ]]; then
-  agraph="$("${py}" scripts/ifc_to_agraph.py "${building}" --cache-dir "${ROS_HOME}/is_graphs/cache" --quiet | tail -n 1)"
-fi
+scenario_building "${scenario}"
+scenario_agraph
 
 # A master of its own, so that the demo never talks to (or kills) a user's roscore.
 export ROS_MASTER_URI="http://localhost:${IS_GRAPHS_DEMO_PORT:-11411}"

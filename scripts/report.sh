@@ -12,6 +12,8 @@ cd "$(dirname "$0")/.."
 root="$(pwd)"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 py="${root}/.venv/bin/python3"
+# shellcheck source=scripts/scenario_lib.sh
+source scripts/scenario_lib.sh
 scenario_args=()
 if [ -n "${BAG:-}" ]; then
   [ -n "${BIM:-}" ] || { echo "report: error: BAG= needs BIM= (the building's .ifc or .agraph.json)" >&2; exit 2; }
@@ -23,19 +25,8 @@ else
   scenario="${SCENARIO:-bags/D4_construction_site.yaml}"
   [ -f "${scenario}" ] || { echo "report: error: no scenario file ${scenario}" >&2; exit 2; }
   name="$(basename "${scenario}" .yaml)"
-  bag="bags/${name}.bag"
-  if [ ! -f "${bag}" ] || [ "${scenario}" -nt "${bag}" ]; then
-    echo "report: making ${bag} from ${scenario}"
-    .ws/devel/lib/is_graphs/make_bag "${scenario}" -o "${bag}" --quiet
-  fi
-  read -r building storey < <("${py}" - "${scenario}" <<'PYEOF'
-import sys, yaml
-s = yaml.safe_load(open(sys.argv[1]))
-print(s["building"], str(s.get("storey", "")) or '""')
-PYEOF
-)
-  [ "${storey}" = '""' ] && storey=""
-  case "${building}" in /*) ;; *) building="${root}/${building}" ;; esac
+  scenario_bag report "${scenario}"
+  scenario_building "${scenario}"
   scenario_args=(--scenario "${scenario}")
 fi
 out="${OUT:-.ws/report/${name}}"

@@ -18,6 +18,8 @@ rate="${RATE:-1}"
 shot_at="${SHOT_AT:-130}"
 images="${OUT:-docs/images}"
 py="${root}/.venv/bin/python3"
+# shellcheck source=scripts/scenario_lib.sh
+source scripts/scenario_lib.sh
 
 fail() { echo "screenshot: error: $*" >&2; exit 1; }
 for tool in Xvfb import; do
@@ -27,26 +29,12 @@ done
 [ -f .ws/devel/setup.bash ] || fail "no build in .ws/ (make build)"
 [ -f "${scenario}" ] || fail "no scenario file ${scenario}"
 name="$(basename "${scenario}" .yaml)"
-bag="bags/${name}.bag"
 out=".ws/screenshot/${name}"
 mkdir -p "${out}" "${images}" "${ROS_HOME}"
 
-if [ ! -f "${bag}" ] || [ "${scenario}" -nt "${bag}" ]; then
-  echo "screenshot: making ${bag} from ${scenario}"
-  .ws/devel/lib/is_graphs/make_bag "${scenario}" -o "${bag}" --quiet
-fi
-read -r building storey < <("${py}" - "${scenario}" <<'PYEOF'
-import sys, yaml
-s = yaml.safe_load(open(sys.argv[1]))
-print(s["building"], str(s.get("storey", "")) or '""')
-PYEOF
-)
-[ "${storey}" = '""' ] && storey=""
-case "${building}" in /*) ;; *) building="${root}/${building}" ;; esac
-agraph="${building}"
-if [[ "${building,,}" == *.ifc ]]; then
-  agraph="$("${py}" scripts/ifc_to_agraph.py "${building}" --cache-dir "${ROS_HOME}/is_graphs/cache" --quiet | tail -n 1)"
-fi
+scenario_bag screenshot "${scenario}"
+scenario_building "${scenario}"
+scenario_agraph
 
 # A display and a ROS master of our own.
 display=""

@@ -18,6 +18,11 @@ T NormalizeAngle(const T& angle) {
   return angle - two_pi * floor((angle + T(M_PI)) / two_pi);
 }
 
+/// The signed turn about z (rad, in (-π, π]) from unit vector `from` to unit vector `to`.
+inline double SignedTurn(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+  return std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
+}
+
 /// Rotation by `yaw` about z.
 template <typename T>
 Eigen::Matrix<T, 3, 3> RotationZ(const T& yaw) {

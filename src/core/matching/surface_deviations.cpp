@@ -6,6 +6,7 @@
 #include <set>
 #include <tuple>
 
+#include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/graph_matcher.h"
 
 namespace is_graphs {
@@ -13,11 +14,6 @@ namespace matching {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-
-/// The signed turn from unit vector `from` to unit vector `to` about z.
-double Turn(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
-  return std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
-}
 
 }  // namespace
 
@@ -31,7 +27,7 @@ std::vector<SurfaceDeviation> GraphMatcher::Deviations(
                     const PlaneFeature& q) {
     const Eigen::Vector2d n = pose.Rotate(s.planes[i].normal);
     const double r = n.dot(a.centre) - (s.planes[i].d + n.dot(pose.t));
-    return std::make_pair(q.r - r, Turn(q.normal, n));
+    return std::make_pair(q.r - r, geometry::SignedTurn(q.normal, n));
   };
   auto off_plan = [&](const std::pair<double, double>& m) {
     return std::abs(m.first) > config_.deviation_offset || std::abs(m.second) > turn_limit;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "is_graphs/geometry/se3.h"
 #include "wall_consensus.h"
 #include "wall_sight_lines.h"
 
@@ -13,10 +14,6 @@ namespace merging {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-
-double Turn(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
-  return std::atan2(from.x() * to.y() - from.y() * to.x(), from.dot(to));
-}
 
 /// An S-plane of the A-surface's: where it stands off it and how much of it it covers.
 struct SurfaceFit {
@@ -29,7 +26,7 @@ SurfaceFit Fit(const agraph::WallSurface& s, const detail::PlaneInB& p,
                const WallDeviationConfig& config) {
   SurfaceFit fit;
   const Eigen::Vector2d an = s.plane.normal.head<2>().normalized();
-  const double angle = Turn(an, p.normal);
+  const double angle = geometry::SignedTurn(an, p.normal);
   if (std::abs(angle) > config.max_angle_deg * kDegToRad) return fit;
   const Eigen::Vector2d mid = 0.5 * (s.start + s.end);
   const double offset = (p.d - p.normal.dot(mid)) / p.normal.dot(an);
