@@ -37,6 +37,7 @@
 #include "sgraph_conversions.h"
 #include "sgraph_session.h"
 #include "tf_lookup.h"
+#include "wall_state_conversions.h"
 
 namespace is_graphs {
 namespace {
@@ -346,6 +347,7 @@ class MergerNode {
       msg.s_graph = s_msg;
       if (last_match_) msg.match = *last_match_;
       msg.bim_T_map = ros_conversions::ToPose(out.bim_T_map);
+      msg.wall_states = ros_conversions::ToMsg(sol.walls);
       is_graph_pub_.publish(msg);
     }
     if (marker_pub_.getNumSubscribers() > 0) {

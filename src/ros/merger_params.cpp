@@ -16,6 +16,9 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "surface_offset_sigma", c.surface_offset_sigma);
   Read(pnh, "room_sigma", c.room_sigma);
   Read(pnh, "match_huber", c.match_huber);
+  Read(pnh, "estimate_wall_deviations", c.estimate_wall_deviations);
+  Read(pnh, "wall_deviation_offset_sigma", c.wall_deviation_offset_sigma);
+  Read(pnh, "wall_deviation_angle_sigma_deg", c.wall_deviation_angle_sigma_deg);
   Read(pnh, "prior_translation_sigma", c.prior_translation_sigma);
   Read(pnh, "prior_yaw_sigma_deg", c.prior_yaw_sigma_deg);
   Read(pnh, "optimize_sgraph", c.optimize_sgraph);

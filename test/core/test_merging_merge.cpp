@@ -115,7 +115,8 @@ TEST(Merge, RecoversAKnownTransformExactly) {
   ExpectRecovered(out, truth, 1e-3, 0.05);
   EXPECT_TRUE(out.solution.covariance_ok);
   EXPECT_GT(out.covariance(0, 0), 0.0);
-  EXPECT_LT(std::sqrt(out.covariance(0, 0)), 0.05);
+  // (σ_x is 0.045 m with the walls held to the plan, 0.051 m when they may deviate.)
+  EXPECT_LT(std::sqrt(out.covariance(0, 0)), 0.06);
   EXPECT_LT(std::sqrt(out.covariance(2, 2)) / kDeg, 1.0);
   EXPECT_TRUE(out.consistency.consistent) << out.consistency.message;
   // With no drift, B <- odom puts the newest keyframe's odometry pose where B_x_M puts it.
@@ -163,7 +164,9 @@ TEST(Merge, RecoversAKnownTransformWithoutOptimizingTheSGraph) {
   config.optimize_sgraph = false;
   Merger merger(config);
   ASSERT_EQ(merger.SetAGraph(building), "");
-  ExpectRecovered(merger.OnMatch(c.match, c.s.graph), truth, 1e-3, 0.05);
+  // The rooms' centres leave a residual (cost 0.026) even here; with walls free to deviate a
+  // little it moves B_x_M by 1.5 mm, so 2 mm.
+  ExpectRecovered(merger.OnMatch(c.match, c.s.graph), truth, 2e-3, 0.05);
 }
 
 TEST(Merge, RecoversAKnownTransformFromNoisyGraphs) {

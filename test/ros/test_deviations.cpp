@@ -3,8 +3,12 @@
 // offset m) or `rotated` (name: deg) within the tolerances, every wall there is MOVED (or NOT_SEEN
 // when `allow_not_seen`), NOT_BUILT exactly for `not_built`, at least `min_extra` EXTRA walls
 // and at most `max_extra`, every other wall AS_PLANNED or NOT_SEEN, each wall with its GUID.
+// And the merge's own wall states (is_graph's wall_states): every wall in `moved` at least
+// `state_min_offset` off has a state within `state_tolerance` of its offset, and every state of
+// a wall on the plan is within `state_plan_tolerance` of it.
 #include <geometry_msgs/PoseStamped.h>
 #include <gtest/gtest.h>
+#include <is_graphs/ISGraph.h>
 #include <is_graphs/WallDeviations.h>
 #include <ros/ros.h>
 
@@ -19,9 +23,45 @@ namespace {
 
 std::mutex mutex_;
 is_graphs::WallDeviations::ConstPtr last_;
+is_graphs::ISGraph::ConstPtr last_is_graph_;
 int received_ = 0;
 ros::WallTime last_truth_;
 bool truth_seen_ = false;
+
+// The merge's as-built states (is_graph.wall_states) against the scenario's moves.
+void CheckWallStates(const std::map<std::string, double>& moved,
+                     const std::map<std::string, double>& rotated,
+                     const std::set<std::string>& not_built) {
+  ros::NodeHandle pnh("~");
+  const double min_offset = pnh.param("state_min_offset", 0.15);
+  const double tolerance = pnh.param("state_tolerance", 0.05);
+  const double plan_tolerance = pnh.param("state_plan_tolerance", 0.02);
+  const int min_checked = pnh.param("state_min_checked", 0);
+  ASSERT_TRUE(last_is_graph_) << "no message on is_graph";
+  std::map<int, std::string> names;
+  for (const auto& w : last_is_graph_->a_graph.walls) names[w.id] = w.name;
+  std::set<std::string> with_state;
+  for (const auto& w : last_is_graph_->wall_states) {
+    const std::string& name = names[w.wall_id];
+    with_state.insert(name);
+    std::printf("  merge state %-10s offset %+.3f m (sigma %.3f) angle %+.2f deg, %d pairs\n",
+                name.c_str(), w.offset, w.offset_sigma, w.angle * 180 / M_PI, w.pairs);
+    if (moved.count(name) || rotated.count(name) || not_built.count(name)) continue;
+    EXPECT_NEAR(w.offset, 0.0, plan_tolerance) << name << " is on the plan";
+  }
+  EXPECT_FALSE(last_is_graph_->wall_states.empty());
+  int checked = 0;
+  for (const auto& [name, offset] : moved) {
+    if (std::abs(offset) < min_offset || !with_state.count(name)) continue;
+    ++checked;
+    for (const auto& w : last_is_graph_->wall_states) {
+      if (names[w.wall_id] == name) {
+        EXPECT_NEAR(w.offset, offset, tolerance) << name;
+      }
+    }
+  }
+  EXPECT_GE(checked, min_checked) << "moved walls with a merge state";
+}
 
 TEST(DeviationsTest, MatchTheScenariosKnownDeviations) {
   ros::NodeHandle nh, pnh("~");
@@ -45,6 +85,13 @@ TEST(DeviationsTest, MatchTheScenariosKnownDeviations) {
             last_ = m;
             ++received_;
           }));
+  ros::Subscriber g =
+      nh.subscribe<is_graphs::ISGraph>("is_graph", 10,
+                                       boost::function<void(const is_graphs::ISGraph::ConstPtr&)>(
+                                           [](const is_graphs::ISGraph::ConstPtr& m) {
+                                             std::lock_guard<std::mutex> lock(mutex_);
+                                             last_is_graph_ = m;
+                                           }));
   ros::Subscriber t = nh.subscribe<geometry_msgs::PoseStamped>(
       "ground_truth/pose", 100,
       boost::function<void(const geometry_msgs::PoseStamped::ConstPtr&)>(
@@ -96,6 +143,7 @@ TEST(DeviationsTest, MatchTheScenariosKnownDeviations) {
   EXPECT_GE(extra, min_extra);
   EXPECT_LE(extra, max_extra);
   EXPECT_GT(seen, 0);
+  CheckWallStates(moved, rotated, not_built);
 }
 
 }  // namespace

@@ -36,6 +36,17 @@ struct PairResidual {
   int dof{0};
 };
 
+/// One A-wall's as-built deviation as the merge estimated it (config.estimate_wall_deviations),
+/// the state DeviatedSurfaceMatchCost moves the wall by.
+struct WallDeviationEstimate {
+  int wall_id{-1};
+  double offset{0.0};        // m along the wall's plan normal (its surface_a's), at its centre
+  double angle{0.0};         // rad, anticlockwise about z, from the plan to the build
+  double offset_sigma{0.0};  // 1-σ of offset [m] and angle [rad]; 0 when not computed
+  double angle_sigma{0.0};
+  int pairs{0};  // surface pairs resting on it
+};
+
 /// The solved iS-Graph: B_x_M, its covariance, the S-Graph keyframes corrected by the BIM and
 /// every match pair's residual.
 struct MergeSolution {
@@ -47,6 +58,7 @@ struct MergeSolution {
   std::map<int, Eigen::Isometry3d> keyframes;  // id -> optimized pose in M
   std::vector<PairResidual> surfaces;
   std::vector<PairResidual> rooms;
+  std::vector<WallDeviationEstimate> walls;  // by wall id; empty unless estimated
   int iterations{0};
   int residual_blocks{0};
   double seconds{0.0};
@@ -65,8 +77,11 @@ struct MergeSolution {
 ///     keyframe–plane, room–plane, corridor–plane, floor–room; the first keyframe fixed as the
 ///     gauge of M; the room and floor offsets measured on the snapshot). Otherwise the S-Graph
 ///     nodes used by the match are held constant.
-///   Match: SurfaceMatchCost per surface pair, RoomMatchCost / CorridorMatchCost per room
-///     pair (Huber), TransformPriorCost at `prior` (the matcher's guess).
+///   Match: SurfaceMatchCost per surface pair (DeviatedSurfaceMatchCost for a surface of a wall
+///     when config.estimate_wall_deviations, with one WallDeviationPriorCost per such wall under
+///     a Cauchy loss), RoomMatchCost / CorridorMatchCost per room pair (Huber),
+///     TransformPriorCost at `prior` (the matcher's guess).
+/// The pair residuals are against the plan (a deviation does not make a pair consistent).
 /// `initial` and `prior` are (x, y, yaw); `z` is the height of M in B. Pairs naming nodes that
 /// are not in the graphs are skipped. The A-Graph must be valid (agraph::ValidateAGraph).
 MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_graph,

@@ -17,6 +17,14 @@ struct MergerConfig {
   double room_sigma{0.15};              // m: S-room centre moved by B_x_M vs. A-room centre
   double match_huber{1.0};              // Huber scale on the whitened match residuals [σ]
 
+  // As-built deviations (issue 21): each A-wall with a matched surface gets a state (offset along
+  // its plan normal, turn about z) under a Cauchy prior at zero with these σ (the plan is mostly
+  // right), so that a wall built off the plan moves instead of pulling B_x_M. false: A-walls
+  // are held to the plan by the A-Graph's own priors alone.
+  bool estimate_wall_deviations{true};
+  double wall_deviation_offset_sigma{0.05};    // m
+  double wall_deviation_angle_sigma_deg{0.1};  // ° (a free turn trades with the pose's yaw)
+
   // Weak prior on B_x_M at the matcher's guess (keeps a badly conditioned merge in place).
   double prior_translation_sigma{2.0};  // m
   double prior_yaw_sigma_deg{10.0};

@@ -14,10 +14,12 @@
 #include "is_graphs/agraph/agraph_problem.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/merging/cost/corridor_match_cost.h"
+#include "is_graphs/merging/cost/deviated_surface_match_cost.h"
 #include "is_graphs/merging/cost/room_match_cost.h"
 #include "is_graphs/merging/cost/surface_match_cost.h"
 #include "is_graphs/merging/cost/transform_prior_cost.h"
 #include "is_graphs/sgraph/sgraph_factors.h"
+#include "wall_deviation_blocks.h"
 
 namespace is_graphs {
 namespace merging {
@@ -93,6 +95,7 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
       held.insert(block);
     }
   };
+  WallDeviationBlocks deviations(a_graph, config);
   const int num_surfaces = static_cast<int>(a_graph.surfaces.size());
   const int num_rooms = static_cast<int>(a_graph.rooms.size());
   std::vector<std::pair<int, int>> surface_pairs, room_pairs;
@@ -111,9 +114,18 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
       hold(&pl->second.d, 1);
       ceres::LossFunction* loss = new ceres::HuberLoss(config.match_huber);
       if (share < 1.0) loss = new ceres::ScaledLoss(loss, share, ceres::TAKE_OWNERSHIP);
-      problem.AddResidualBlock(SurfaceMatchCost::Create(n_a, z, surface_sqrt_info), loss, xi.data(),
-                               pl->second.n.data(), &pl->second.d, a_problem.SurfaceNormal(a_id),
-                               a_problem.SurfaceOffset(a_id));
+      const int wall = deviations.WallOf(a_id);
+      if (wall < 0) {
+        problem.AddResidualBlock(SurfaceMatchCost::Create(n_a, z, surface_sqrt_info), loss,
+                                 xi.data(), pl->second.n.data(), &pl->second.d,
+                                 a_problem.SurfaceNormal(a_id), a_problem.SurfaceOffset(a_id));
+        continue;
+      }
+      problem.AddResidualBlock(
+          DeviatedSurfaceMatchCost::Create(n_a, a_graph.walls[wall].center.head<2>(),
+                                           deviations.Normal(wall), z, surface_sqrt_info),
+          loss, xi.data(), pl->second.n.data(), &pl->second.d, a_problem.SurfaceNormal(a_id),
+          a_problem.SurfaceOffset(a_id), deviations.Block(wall, problem));
     }
   }
   for (const auto& [s_id, a_id] : pairs.rooms) {
@@ -161,11 +173,27 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
   covariance_options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
   covariance_options.num_threads = config.num_threads;
   ceres::Covariance covariance(covariance_options);
-  const std::vector<std::pair<const double*, const double*>> blocks = {{xi.data(), xi.data()}};
-  if (covariance.Compute(blocks, &problem)) {
+  std::vector<std::pair<const double*, const double*>> blocks = {{xi.data(), xi.data()}};
+  for (auto& [wall, block] : deviations.blocks()) blocks.emplace_back(block.data(), block.data());
+  const bool covariance_computed = covariance.Compute(blocks, &problem);
+  if (covariance_computed) {
     Eigen::Matrix<double, 3, 3, Eigen::RowMajor> c;
     out.covariance_ok = covariance.GetCovarianceBlock(xi.data(), xi.data(), c.data());
     if (out.covariance_ok) out.covariance = c;
+  }
+  for (auto& [wall, block] : deviations.blocks()) {
+    WallDeviationEstimate w;
+    w.wall_id = wall;
+    w.offset = block.x();
+    w.angle = block.y();
+    w.pairs = deviations.Pairs(wall);
+    Eigen::Matrix<double, 2, 2, Eigen::RowMajor> c;
+    if (covariance_computed &&
+        covariance.GetCovarianceBlock(block.data(), block.data(), c.data())) {
+      w.offset_sigma = std::sqrt(std::max(0.0, c(0, 0)));
+      w.angle_sigma = std::sqrt(std::max(0.0, c(1, 1)));
+    }
+    out.walls.push_back(w);
   }
 
   for (const auto& k : s_graph.keyframes) {

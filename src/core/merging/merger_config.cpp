@@ -13,6 +13,8 @@ std::string MergerConfig::Validate() const {
       {"surface_offset_sigma", surface_offset_sigma},
       {"room_sigma", room_sigma},
       {"match_huber", match_huber},
+      {"wall_deviation_offset_sigma", wall_deviation_offset_sigma},
+      {"wall_deviation_angle_sigma_deg", wall_deviation_angle_sigma_deg},
       {"prior_translation_sigma", prior_translation_sigma},
       {"prior_yaw_sigma_deg", prior_yaw_sigma_deg},
       {"max_solver_time", max_solver_time},
