@@ -84,7 +84,7 @@ TEST(WallDeviationState, AWallBuiltOffThePlanMovesInsteadOfThePose) {
   std::printf("B_x_M error with the walls held to the plan %.4f m, with deviation states %.4f m\n",
               PositionError(held, truth), PositionError(free, truth));
   EXPECT_TRUE(held.walls.empty());
-  // (4.9 cm held, 0.7 cm free when written: the prior's tail and the rooms' centres still pull.)
+  // (4.9 cm held, 0.5 cm free when written: the prior's tail and the rooms' centres still pull.)
   EXPECT_LT(PositionError(free, truth), 0.01);
   EXPECT_LT(PositionError(free, truth), 0.25 * PositionError(held, truth));
   const WallDeviationEstimate* moved = Find(free, b.moved_wall);

@@ -22,7 +22,7 @@ struct MergerConfig {
   // right), so that a wall built off the plan moves instead of pulling B_x_M. false: A-walls
   // are held to the plan by the A-Graph's own priors alone.
   bool estimate_wall_deviations{true};
-  double wall_deviation_offset_sigma{0.05};    // m
+  double wall_deviation_offset_sigma{0.03};    // m, > surface_offset_sigma / 2 (Validate)
   double wall_deviation_angle_sigma_deg{0.1};  // ° (a free turn trades with the pose's yaw)
 
   // Weak prior on B_x_M at the matcher's guess (keeps a badly conditioned merge in place).

@@ -57,6 +57,15 @@ std::string MergerConfig::Validate() const {
     return "window_keyframes must be >= 0 (0: all keyframes), got " +
            std::to_string(window_keyframes);
   if (num_threads < 1) return "num_threads must be >= 1, got " + std::to_string(num_threads);
+  // The Cauchy prior's steepest slope, 1 / (2σ), must be below the most one matched plane pulls
+  // with (its Huber: 1 / surface_offset_sigma), or a wall built off the plan can never leave it.
+  if (estimate_wall_deviations && wall_deviation_offset_sigma <= 0.5 * surface_offset_sigma) {
+    std::ostringstream out;
+    out << "wall_deviation_offset_sigma must exceed surface_offset_sigma / 2 ("
+        << wall_deviation_offset_sigma << " <= " << 0.5 * surface_offset_sigma
+        << "): no wall could leave the plan; set estimate_wall_deviations false to hold them";
+    return out.str();
+  }
   std::string error = sgraph.Validate();
   if (!error.empty()) return "sgraph." + error;
   error = agraph.Validate();
