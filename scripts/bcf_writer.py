@@ -1,8 +1,9 @@
 """BCF 2.1 (buildingSMART BCF-XML, release_2_1 schemas in test/data/bcf21) for wall deviations.
 
-One topic per wall not AS_PLANNED (MOVED, NOT_BUILT, EXTRA): markup.bcf (the topic, its IFC
-wall GUID in the description), viewpoint.bcfv (a perspective camera 1.6 m high looking at the
-wall from the side the robot walked, the wall selected and coloured by its IFC GlobalId) and
+One topic per wall not AS_PLANNED (MOVED, NOT_BUILT, EXTRA) and per door or opening CLOSED (an
+item with "element" "door" / "opening", its start-end the opening's span): markup.bcf (the topic,
+its IFC GUID in the description), viewpoint.bcfv (a perspective camera 1.6 m high looking at the
+wall or door from the side the robot walked, it selected and coloured by its IFC GlobalId) and
 snapshot.png. Written against the XSDs with the standard library (ElementTree); topic and
 viewpoint GUIDs are UUID5 of the wall's key, so a rerun gives the same topics (BCF managers then
 update instead of duplicating). docs/deviations.md says why not a BCF library.
@@ -17,7 +18,7 @@ import xml.etree.ElementTree as ET
 import zipfile
 
 NAMESPACE = uuid.UUID("5b0c8f3e-6a1d-4c2e-9f57-2d1e0a7b9c41")  # is_graphs deviation topics
-COLOURS = {"MOVED": "FF7F0E", "NOT_BUILT": "D62AD6", "EXTRA": "1F5FFF"}
+COLOURS = {"MOVED": "FF7F0E", "NOT_BUILT": "D62AD6", "EXTRA": "1F5FFF", "CLOSED": "D62728"}
 AUTHOR = "is_graphs"
 
 
@@ -34,7 +35,14 @@ def built_segment(w):
     return mx - rx, my - ry, mx + rx, my + ry
 
 
+def is_door(w):
+    return w.get("element", "wall") != "wall"
+
+
 def topic_title(w):
+    if is_door(w):
+        return "%s %s closed (open in the plan)" % (
+            w["element"].capitalize(), w["name"] or w["guid"] or "#%d" % w["doorway_id"])
     name = w["name"] or (w["guid"] or ("wall %d" % w["wall_id"] if w["wall_id"] >= 0 else ""))
     if w["status"] == "MOVED":
         return "Wall %s built %+.0f cm / %+.1f° off the plan" % (
@@ -46,6 +54,14 @@ def topic_title(w):
 
 
 def description(w):
+    if is_door(w):
+        ident = "IFC GlobalId %s" % w["guid"] if w["guid"] else (
+            "A-Graph doorway %d (the IFC element has no GlobalId)" % w["doorway_id"])
+        return ("%s: a %.2f m %s at (%.2f, %.2f) in the model's coordinates is closed: %d of "
+                "the robot's viewpoints facing it saw a wall-height surface across it and none "
+                "saw through it; never walked through." % (
+                    ident, w["width_m"], w["element"], w["position"][0], w["position"][1],
+                    w["blocked_views"]))
     ident = "IFC GlobalId %s" % w["guid"] if w["guid"] else (
         "A-Graph wall %d (the IFC wall has no GlobalId)" % w["wall_id"] if w["wall_id"] >= 0
         else "no IFC element")
@@ -142,6 +158,8 @@ def markup(w, topic, view, index, date, building, out):
 
 
 def key(w):
+    if is_door(w):  # its own namespace: a door never shares a topic with a wall
+        return "door:" + (w["guid"] or "#%d" % w["doorway_id"])
     if w["guid"]:
         return w["guid"]
     if w["wall_id"] >= 0:

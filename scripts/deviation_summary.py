@@ -21,6 +21,15 @@ def as_dict(w):
             "rays_through": w.rays_through}
 
 
+DOOR_STATUS = ["PRESENT", "CLOSED", "NOT_SEEN"]
+
+
+def as_door(d):
+    return {"doorway_id": d.doorway_id, "guid": d.guid, "name": d.name,
+            "status": DOOR_STATUS[d.status], "position": [d.position.x, d.position.y],
+            "blocked_views": d.blocked_views}
+
+
 def main(argv):
     import rosbag  # Debian's ROS Python (the venv sees the system packages)
     from deviation_report import summary
@@ -32,7 +41,8 @@ def main(argv):
         print("demo: no deviations message in %s (not localized?)" % argv[1])
         return 0
     print("as built vs as planned (S-Graph revision %d):" % last.s_graph_revision)
-    print(summary([as_dict(w) for w in last.walls]))
+    print(summary([as_dict(w) for w in last.walls],
+                  [as_door(d) for d in getattr(last, "doorways", [])]))
     return 0
 
 

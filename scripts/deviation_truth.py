@@ -1,10 +1,11 @@
 """The simulator's known deviations (a bags/ scenario's scene.deviations) against a report.
 
 move_wall (offset along the wall's first surface normal), rotate_wall (angle_deg about its
-centre), remove_wall (NOT_BUILT), add_wall (EXTRA). Measures: every deviation >= 5 cm or >= 2 deg
+centre), remove_wall (NOT_BUILT), add_wall (EXTRA), close_doorway (the door CLOSED). Measures: every deviation >= 5 cm or >= 2 deg
 found with the right status; offset and angle RMSE over the MOVED walls; walls on the plan
 reported MOVED; NOT_BUILT claimed for a wall that was built; added walls >= 1 m found (EXTRA
-within 0.3 m of them) and EXTRA reports no added wall explains.
+within 0.3 m of them) and EXTRA reports no added wall explains; closed doors reported CLOSED,
+doors reported CLOSED that are open, closed doors reported PRESENT.
 """
 import math
 
@@ -14,10 +15,12 @@ import yaml
 def _truth(scenario_path):
     with open(scenario_path) as f:
         scene = (yaml.safe_load(f) or {}).get("scene") or {}
-    walls, extras = {}, []
+    walls, extras, closed = {}, [], set()
     for d in scene.get("deviations") or []:
         kind = d.get("type")
-        if kind in ("move_wall", "rotate_wall", "remove_wall"):
+        if kind == "close_doorway":
+            closed.add(str(d["doorway"]))
+        elif kind in ("move_wall", "rotate_wall", "remove_wall"):
             t = walls.setdefault(str(d["wall"]), {"status": "MOVED", "offset_m": 0.0,
                                                   "angle_deg": 0.0})
             if kind == "move_wall":
@@ -29,7 +32,7 @@ def _truth(scenario_path):
         elif kind == "add_wall":
             extras.append({"start": [float(v) for v in d["start"]],
                            "end": [float(v) for v in d["end"]]})
-    return walls, extras
+    return walls, extras, closed
 
 
 def _explains(added, w, tolerance=0.3):
@@ -44,8 +47,26 @@ def _explains(added, w, tolerance=0.3):
     return across <= tolerance and -tolerance <= along <= length + tolerance
 
 
-def compare(walls, scenario_path):
-    truth, extras = _truth(scenario_path)
+def _doors(doors, closed):
+    """Doors (report items) against the closed ones (names or A-Graph ids)."""
+    def is_closed(d):
+        return d["name"] in closed or str(d["doorway_id"]) in closed
+    rows = [{"doorway": d["name"], "guid": d["guid"],
+             "truth": "CLOSED" if is_closed(d) else "PRESENT", "reported": d["status"]}
+            for d in doors]
+    return {"doors": rows,
+            "closed_doors": len(closed),
+            "closed_found": sum(1 for d in doors if is_closed(d) and d["status"] == "CLOSED"),
+            "closed_reported_present": [d["name"] for d in doors
+                                        if is_closed(d) and d["status"] == "PRESENT"],
+            "false_closed": [d["name"] for d in doors
+                             if not is_closed(d) and d["status"] == "CLOSED"],
+            "doors_present": sum(1 for d in doors if d["status"] == "PRESENT"),
+            "doors_not_seen": sum(1 for d in doors if d["status"] == "NOT_SEEN")}
+
+
+def compare(walls, scenario_path, doors=()):
+    truth, extras, closed = _truth(scenario_path)
     rows, off_err, ang_err = [], [], []
     missed, false_moved, false_not_built = [], [], []
     for w in walls:
@@ -78,19 +99,22 @@ def compare(walls, scenario_path):
     def rmse(v):
         return math.sqrt(sum(x * x for x in v) / len(v)) if v else 0.0
 
-    return {"walls": rows, "missed": missed, "false_moved": false_moved,
+    return dict(_doors(doors, closed), **{"walls": rows, "missed": missed, "false_moved": false_moved,
             "false_not_built": false_not_built, "offset_rmse_m": rmse(off_err),
             "angle_rmse_deg": rmse(ang_err), "moved_measured": len(off_err),
             "extra_walls": len(long_extras), "extra_found": len(found),
             "extra_unexplained": len(unexplained),
-            "deviations": sum(1 for t in truth.values()) + len(extras)}
+            "deviations": sum(1 for t in truth.values()) + len(extras) + len(closed)})
 
 
 def format_summary(r):
     return ("against the scenario's %d known deviations: missed %d %s, offset RMSE %.1f cm and "
             "angle RMSE %.2f° over %d MOVED walls, false MOVED %d %s, false NOT_BUILT %d %s, "
-            "EXTRA found %d of %d (>= 1 m), EXTRA unexplained %d" % (
+            "EXTRA found %d of %d (>= 1 m), EXTRA unexplained %d; closed doors found %d of %d, "
+            "reported PRESENT %s, false CLOSED %d %s (doors PRESENT %d, NOT_SEEN %d)" % (
                 r["deviations"], len(r["missed"]), r["missed"], 100 * r["offset_rmse_m"],
                 r["angle_rmse_deg"], r["moved_measured"], len(r["false_moved"]), r["false_moved"],
                 len(r["false_not_built"]), r["false_not_built"], r["extra_found"],
-                r["extra_walls"], r["extra_unexplained"]))
+                r["extra_walls"], r["extra_unexplained"], r["closed_found"], r["closed_doors"],
+                r["closed_reported_present"], len(r["false_closed"]), r["false_closed"],
+                r["doors_present"], r["doors_not_seen"]))

@@ -33,7 +33,37 @@ std_msgs::ColorRGBA StatusColour(merging::WallStatus s) {
   return ros_markers::Rgba(1, 1, 1);
 }
 
+std_msgs::ColorRGBA DoorColour(merging::DoorwayStatus s) {
+  switch (s) {
+    case merging::DoorwayStatus::kPresent:
+      return ros_markers::Rgba(0.2f, 0.8f, 0.2f);
+    case merging::DoorwayStatus::kClosed:
+      return ros_markers::Rgba(0.9f, 0.1f, 0.1f);
+    case merging::DoorwayStatus::kNotSeen:
+      return ros_markers::Rgba(0.6f, 0.6f, 0.6f, 0.6f);
+  }
+  return ros_markers::Rgba(1, 1, 1);
+}
+
 }  // namespace
+
+is_graphs::DoorwayDeviation ToMsg(const merging::DoorwayDeviation& d) {
+  is_graphs::DoorwayDeviation m;
+  m.doorway_id = d.doorway_id;
+  m.guid = d.guid;
+  m.name = d.name;
+  m.kind = static_cast<uint8_t>(d.kind);
+  m.wall_id = d.wall_id;
+  m.status = static_cast<uint8_t>(d.status);
+  m.position = Point(d.position, 0.0);
+  m.width = d.width;
+  m.walked_through = d.walked_through;
+  m.rays_through = d.rays_through;
+  m.blocked_views = d.blocked_views;
+  for (int id : d.s_doorways) m.s_doorways.push_back(static_cast<uint32_t>(id));
+  for (int id : d.s_planes) m.s_planes.push_back(static_cast<uint32_t>(id));
+  return m;
+}
 
 is_graphs::WallDeviation ToMsg(const merging::WallDeviation& d) {
   is_graphs::WallDeviation m;
@@ -52,8 +82,10 @@ is_graphs::WallDeviation ToMsg(const merging::WallDeviation& d) {
   return m;
 }
 
-visualization_msgs::MarkerArray DeviationMarkers(const std::vector<merging::WallDeviation>& walls,
-                                                 const std::string& frame_id, double heat_max) {
+visualization_msgs::MarkerArray DeviationMarkers(
+    const std::vector<merging::WallDeviation>& walls,
+    const std::vector<merging::DoorwayDeviation>& doors, const std::string& frame_id,
+    double heat_max) {
   using merging::WallStatus;
   visualization_msgs::MarkerArray out;
   auto text =
@@ -95,6 +127,19 @@ visualization_msgs::MarkerArray DeviationMarkers(const std::vector<merging::Wall
     ++text.id;
     out.markers.push_back(text);
   }
+  auto spheres =
+      ros_markers::MakeMarker(frame_id, "doorways", visualization_msgs::Marker::SPHERE_LIST, 0.4,
+                              DoorColour(merging::DoorwayStatus::kNotSeen));
+  for (const auto& d : doors) {
+    spheres.points.push_back(Point(d.position, 1.0));
+    spheres.colors.push_back(DoorColour(d.status));
+    if (d.status != merging::DoorwayStatus::kClosed) continue;
+    text.text = d.name + " CLOSED";
+    text.pose.position = Point(d.position, 2.4);
+    ++text.id;
+    out.markers.push_back(text);
+  }
+  if (!spheres.points.empty()) out.markers.push_back(spheres);
   return out;
 }
 

@@ -1,8 +1,9 @@
 // deviation_node: as-built against as-planned (issue 21). In: is_graph (merger_node's iS-Graph:
 // the A-Graph, the S-Graph and B_x_M of each merge). Out: `deviations` (latched,
-// msg/WallDeviations.msg: every wall of the storey walked, keyed by IFC GlobalId, and the EXTRA
-// planes), `deviations/markers` (latched). Params (~, config/deviations.yaml): those of
-// merging::WallDeviationConfig, `heat_max` (m, the offset drawn full red).
+// msg/WallDeviations.msg: every wall of the storey walked, keyed by IFC GlobalId, the EXTRA
+// planes, and every door and opening present or closed), `deviations/markers` (latched). Params
+// (~, config/deviations.yaml): those of merging::WallDeviationConfig, those of
+// merging::DoorwayDeviationConfig prefixed `doorway_`, `heat_max` (m, the offset drawn full red).
 #include <is_graphs/ISGraph.h>
 #include <ros/ros.h>
 
@@ -19,8 +20,9 @@ namespace {
 
 class DeviationNode {
  public:
-  DeviationNode(ros::NodeHandle& nh, const merging::WallDeviationConfig& config, double heat_max)
-      : config_(config), heat_max_(heat_max) {
+  DeviationNode(ros::NodeHandle& nh, const merging::WallDeviationConfig& config,
+                const merging::DoorwayDeviationConfig& doors, double heat_max)
+      : config_(config), doors_(doors), heat_max_(heat_max) {
     pub_ = nh.advertise<is_graphs::WallDeviations>("deviations", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("deviations/markers", 1, true);
     sub_ = nh.subscribe("is_graph", 1, &DeviationNode::OnISGraph, this);
@@ -40,8 +42,10 @@ class DeviationNode {
             "they are reported by A-Graph id",
             unnamed.size(), msg->a_graph.building.c_str(), *unnamed.begin());
     }
-    const auto walls = merging::ClassifyWalls(a_graph_, ros_conversions::FromMsg(msg->s_graph),
-                                              ros_conversions::FromPose(msg->bim_T_map), config_);
+    const sgraph::SGraph s_graph = ros_conversions::FromMsg(msg->s_graph);
+    const Eigen::Isometry3d bim_T_map = ros_conversions::FromPose(msg->bim_T_map);
+    const auto walls = merging::ClassifyWalls(a_graph_, s_graph, bim_T_map, config_);
+    const auto doors = merging::ClassifyDoorways(a_graph_, s_graph, bim_T_map, config_, doors_);
     is_graphs::WallDeviations out;
     out.header = msg->header;
     out.a_graph_sha256 = sha_;
@@ -52,23 +56,29 @@ class DeviationNode {
       off +=
           w.status != merging::WallStatus::kAsPlanned && w.status != merging::WallStatus::kNotSeen;
     }
+    int closed = 0;
+    for (const auto& d : doors) {
+      out.doorways.push_back(ros_conversions::ToMsg(d));
+      closed += d.status == merging::DoorwayStatus::kClosed;
+    }
     pub_.publish(out);
-    auto markers = ros_conversions::DeviationMarkers(walls, msg->header.frame_id, heat_max_);
+    auto markers = ros_conversions::DeviationMarkers(walls, doors, msg->header.frame_id, heat_max_);
     for (auto& m : markers.markers) m.header.stamp = msg->header.stamp;
     marker_pub_.publish(markers);
-    if (off != last_off_)
+    if (off != last_off_ || closed != last_closed_)
       ROS_INFO(
           "deviation_node: S-Graph rev %u: %d of %zu walls off the plan (MOVED, NOT_BUILT, "
-          "EXTRA)",
-          msg->s_graph.revision, off, walls.size());
-    last_off_ = off;
+          "EXTRA), %d of %zu doors and openings CLOSED",
+          msg->s_graph.revision, off, walls.size(), closed, doors.size());
+    last_off_ = off, last_closed_ = closed;
   }
 
   merging::WallDeviationConfig config_;
+  merging::DoorwayDeviationConfig doors_;
   double heat_max_;
   std::string sha_;
   agraph::AGraph a_graph_;
-  int last_off_{-1};
+  int last_off_{-1}, last_closed_{-1};
   ros::Publisher pub_, marker_pub_;
   ros::Subscriber sub_;
 };
@@ -91,14 +101,26 @@ int main(int argc, char** argv) {
     is_graphs::ros_params::Read(pnh, "extra_min_height", c.extra_min_height);
     is_graphs::ros_params::Read(pnh, "door_margin", c.door_margin);
     is_graphs::ros_params::Read(pnh, "not_built_min_rays", c.not_built_min_rays);
+    is_graphs::merging::DoorwayDeviationConfig d;
+    is_graphs::ros_params::Read(pnh, "doorway_default_width", d.default_width);
+    is_graphs::ros_params::Read(pnh, "doorway_walk_margin", d.walk_margin);
+    is_graphs::ros_params::Read(pnh, "doorway_view_distance", d.view_distance);
+    is_graphs::ros_params::Read(pnh, "doorway_present_min_rays", d.present_min_rays);
+    is_graphs::ros_params::Read(pnh, "doorway_closed_min_cover", d.closed_min_cover);
+    is_graphs::ros_params::Read(pnh, "doorway_closed_max_offset", d.closed_max_offset);
+    is_graphs::ros_params::Read(pnh, "doorway_closed_min_height", d.closed_min_height);
+    is_graphs::ros_params::Read(pnh, "doorway_closed_min_views", d.closed_min_views);
     is_graphs::ros_params::Read(pnh, "heat_max", heat_max);
     if (!(heat_max > 0.0))
       throw is_graphs::ros_params::ParamError("parameter '" + pnh.resolveName("heat_max") +
                                               "' must be > 0");
-    if (const std::string e = c.Validate(); !e.empty())
-      throw is_graphs::ros_params::ParamError(
-          "parameter '" + pnh.resolveName(e.substr(0, e.find(':'))) + "'" + e.substr(e.find(':')));
-    is_graphs::DeviationNode node(nh, c, heat_max);
+    for (const std::string& e :
+         {c.Validate(), d.Validate().empty() ? "" : "doorway_" + d.Validate()})
+      if (!e.empty())
+        throw is_graphs::ros_params::ParamError("parameter '" +
+                                                pnh.resolveName(e.substr(0, e.find(':'))) + "'" +
+                                                e.substr(e.find(':')));
+    is_graphs::DeviationNode node(nh, c, d, heat_max);
     ros::spin();
     return EXIT_SUCCESS;
   } catch (const is_graphs::ros_params::ParamError& e) {

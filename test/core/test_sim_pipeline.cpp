@@ -71,6 +71,33 @@ TEST(SimPipeline, DeviationsChangeTheSceneNotTheAGraph) {
   EXPECT_LT(hit.triangle, 0);
 }
 
+// close_doorway: the opening filled across its width, the wall's thickness, to the ceiling; the
+// A-Graph keeps the doorway. A doorway that is not there is an error naming the field.
+TEST(SimPipeline, AClosedDoorwayIsFilled) {
+  if (!HaveConverter()) GTEST_SKIP() << "bim/office.ifc or the converter's venv is missing";
+  const auto built = Prepare(
+      "building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\n"
+      "scene: {deviations: [{type: close_doorway, doorway: 0}]}\n");
+  ASSERT_TRUE(built);
+  const agraph::Doorway& door = built->graph.doorways[0];
+  const agraph::Wall& wall = built->graph.walls[door.wall];
+  const Eigen::Vector3d n = built->graph.surfaces[wall.surface_a].plane.normal;
+  for (double z : {0.3, 1.0, 2.2}) {
+    const Eigen::Vector3d from = door.position + Eigen::Vector3d(0, 0, z) - 0.5 * n;
+    const RayHit hit = built->embree->Intersect(Ray{from.cast<float>(), n.cast<float>(), 1.0f});
+    EXPECT_GE(hit.triangle, 0) << z;
+    EXPECT_NEAR(hit.distance, 0.5 - 0.5 * std::max(wall.thickness, 0.05), 0.03) << z;
+  }
+  const Result<ScenarioConfig> c = ParseScenarioYaml(
+      "building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\n"
+      "scene: {deviations: [{type: close_doorway, doorway: nope}]}\n",
+      "t.yaml", kRoot);
+  ASSERT_TRUE(c.ok()) << c.error();
+  const auto s = PrepareSimulation(c.value(), std::string(IS_GRAPHS_TEST_TMP_DIR) + "/bim_cache");
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().find("scene.deviations[0].doorway"), std::string::npos) << s.error();
+}
+
 // A wall built turned (rotate_wall): rays along its normal, 1 m either side of its centre, hit
 // it nearer on one side and farther on the other by tan(angle) each; the plan's wall, level.
 TEST(SimPipeline, ARotatedWallIsBuiltTurnedAboutItsCentre) {

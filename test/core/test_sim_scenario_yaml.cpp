@@ -40,6 +40,7 @@ scene:
     - {type: remove_wall, wall: 3}
     - {type: add_wall, start: [1, 1], end: [3, 1], thickness: 0.12}
     - {type: rotate_wall, wall: p_s1, angle_deg: -12.5}
+    - {type: close_doorway, doorway: D_101, height: 2.0}
   clutter:
     - {type: pallet, room: "101", offset: [0.5, 0]}
     - {type: person, position: [2, 6]}
@@ -57,7 +58,10 @@ scene:
   EXPECT_DOUBLE_EQ(c.sensor.range_noise_stddev, 0.02);
   EXPECT_DOUBLE_EQ(c.sensor.azimuth_resolution_deg, 0.2);  // default kept
   EXPECT_DOUBLE_EQ(c.odometry.rate_hz, 50.0);
-  ASSERT_EQ(c.scene.deviations.size(), 4u);
+  ASSERT_EQ(c.scene.deviations.size(), 5u);
+  EXPECT_EQ(c.scene.deviations[4].type, DeviationConfig::Type::kCloseDoorway);
+  EXPECT_EQ(c.scene.deviations[4].doorway.name, "D_101");
+  EXPECT_DOUBLE_EQ(c.scene.deviations[4].height, 2.0);
   EXPECT_EQ(c.scene.deviations[0].wall.name, "p_n1");
   EXPECT_EQ(c.scene.deviations[3].type, DeviationConfig::Type::kRotateWall);
   EXPECT_DOUBLE_EQ(c.scene.deviations[3].angle_deg, -12.5);

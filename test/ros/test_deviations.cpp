@@ -7,7 +7,8 @@
 // `state_min_offset` off has a state within `state_tolerance` of its offset, and every state of
 // a wall on the plan is within `state_plan_tolerance` of it. (The states are shrunk toward the
 // plan by their prior: a moved wall's state must be on its side, at least `state_min_share` of
-// the way, and at most `state_tolerance` beyond.)
+// the way, and at most `state_tolerance` beyond.) Doors (the message's doorways): CLOSED exactly
+// for `closed_doors` (names), at least `min_present_doors` PRESENT.
 #include <geometry_msgs/PoseStamped.h>
 #include <gtest/gtest.h>
 #include <is_graphs/ISGraph.h>
@@ -66,6 +67,25 @@ void CheckWallStates(const std::map<std::string, double>& moved,
     }
   }
   EXPECT_GE(checked, min_checked) << "moved walls with a merge state";
+}
+
+// The doors and openings: CLOSED exactly for `closed_doors`, at least `min_present_doors` PRESENT.
+void CheckDoors(const is_graphs::WallDeviations& m) {
+  ros::NodeHandle pnh("~");
+  std::vector<std::string> closed_list;
+  pnh.getParam("closed_doors", closed_list);
+  const std::set<std::string> closed(closed_list.begin(), closed_list.end());
+  const int min_present = pnh.param("min_present_doors", 0);
+  int present = 0;
+  std::set<std::string> reported_closed;
+  for (const auto& d : m.doorways) {
+    std::printf("  door %-8s %-24s status %u walked %d rays %d blocked %d\n", d.name.c_str(),
+                d.guid.c_str(), d.status, d.walked_through, d.rays_through, d.blocked_views);
+    present += d.status == is_graphs::DoorwayDeviation::PRESENT;
+    if (d.status == is_graphs::DoorwayDeviation::CLOSED) reported_closed.insert(d.name);
+  }
+  EXPECT_EQ(reported_closed, closed) << "the doors reported CLOSED";
+  EXPECT_GE(present, min_present) << "doors PRESENT";
 }
 
 TEST(DeviationsTest, MatchTheScenariosKnownDeviations) {
@@ -148,6 +168,7 @@ TEST(DeviationsTest, MatchTheScenariosKnownDeviations) {
   EXPECT_GE(extra, min_extra);
   EXPECT_LE(extra, max_extra);
   EXPECT_GT(seen, 0);
+  CheckDoors(*last_);
   CheckWallStates(moved, rotated, not_built);
 }
 

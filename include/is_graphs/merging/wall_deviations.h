@@ -53,6 +53,13 @@ struct WallDeviation {
   Eigen::Vector2d normal{Eigen::Vector2d::UnitX()};  // the offset's direction (EXTRA: its face's)
 };
 
+/// `bim_T_map` corrected by the consensus of the walls seen (a small motion, by robust least
+/// squares, that puts the A-surfaces' S-planes back on the plan: the merge can be pulled a few cm
+/// by walls built off it). ClassifyWalls and ClassifyDoorways place the S-Graph by this.
+Eigen::Isometry3d ConsensusBimTMap(const agraph::AGraph& building, const sgraph::SGraph& graph,
+                                   const Eigen::Isometry3d& bim_T_map,
+                                   const WallDeviationConfig& config);
+
 /// Classifies every wall of `building` (one storey, as the merger holds it) against the S-Graph
 /// `graph` placed in B by `bim_T_map` (the merge's estimate), and lists the wall-height S-planes
 /// no A-surface explains as EXTRA. Deterministic; O(walls x planes x sight lines).

@@ -120,14 +120,15 @@ struct WallRef {
 
 /// BIM deviation: the scene differs from the planned BIM (the A-Graph stays the planned one).
 struct DeviationConfig {
-  enum class Type { kMoveWall, kRemoveWall, kAddWall, kRotateWall };
+  enum class Type { kMoveWall, kRemoveWall, kAddWall, kRotateWall, kCloseDoorway };
   Type type{Type::kMoveWall};
   WallRef wall;           // move_wall, remove_wall, rotate_wall
+  WallRef doorway;        // close_doorway: a door / opening by name (unique on the storey) or id
   double offset{0.0};     // move_wall: m along the wall's first surface normal
   double angle_deg{0.0};  // rotate_wall: about the vertical through the wall's centre, CCW
   Eigen::Vector2d start{Eigen::Vector2d::Zero()}, end{Eigen::Vector2d::Zero()};  // add_wall
   double thickness{0.1};                                                         // add_wall
-  double height{0.0};  // add_wall: 0 = the storey height
+  double height{0.0};  // add_wall, close_doorway: 0 = the storey height (close_doorway: a fill)
 };
 
 /// A clutter object standing on the floor. Shapes: box, cylinder; the named kinds (pallet,

@@ -139,17 +139,14 @@ std::string WallDeviationConfig::Validate() const {
   return "";
 }
 
-std::vector<WallDeviation> ClassifyWalls(const agraph::AGraph& building,
-                                         const sgraph::SGraph& graph,
-                                         const Eigen::Isometry3d& bim_T_map,
-                                         const WallDeviationConfig& config) {
+Eigen::Isometry3d ConsensusBimTMap(const agraph::AGraph& building, const sgraph::SGraph& graph,
+                                   const Eigen::Isometry3d& bim_T_map,
+                                   const WallDeviationConfig& config) {
   std::map<int, const agraph::WallSurface*> surfaces;
   for (const auto& s : building.surfaces) surfaces[s.id] = &s;
-  // First against the merge's B_x_M; then against it corrected by the consensus of the walls
-  // seen (the merge can be pulled a little by walls built off the plan).
-  std::vector<detail::PlaneInB> planes = detail::PlanesInB(graph, bim_T_map);
   std::vector<bool> explained;
-  std::map<int, SurfaceFit> best = BestFits(surfaces, planes, config, &explained);
+  const std::map<int, SurfaceFit> best =
+      BestFits(surfaces, detail::PlanesInB(graph, bim_T_map), config, &explained);
   // A wall's faces are one piece of evidence: each weighs its overlap / the faces seen.
   std::map<int, int> faces_seen;
   for (const auto& [id, f] : best) ++faces_seen[surfaces[id]->wall];
@@ -160,18 +157,25 @@ std::vector<WallDeviation> ClassifyWalls(const agraph::AGraph& building,
                     f.angle, f.overlap / faces_seen[s.wall]});
   }
   // Robust scales half the AS_PLANNED tolerances: a wall off by more hardly pulls.
-  const Eigen::Isometry3d corrected =
-      detail::ConsensusCorrection(seen, 0.5 * config.planned_offset,
-                                  0.5 * config.planned_angle_deg * kDegToRad) *
-      bim_T_map;
-  planes = detail::PlanesInB(graph, corrected);
-  best = BestFits(surfaces, planes, config, &explained);
+  return detail::ConsensusCorrection(seen, 0.5 * config.planned_offset,
+                                     0.5 * config.planned_angle_deg * kDegToRad) *
+         bim_T_map;
+}
+
+std::vector<WallDeviation> ClassifyWalls(const agraph::AGraph& building,
+                                         const sgraph::SGraph& graph,
+                                         const Eigen::Isometry3d& bim_T_map,
+                                         const WallDeviationConfig& config) {
+  std::map<int, const agraph::WallSurface*> surfaces;
+  for (const auto& s : building.surfaces) surfaces[s.id] = &s;
+  // Against the merge's B_x_M corrected by the consensus of the walls seen (the merge can be
+  // pulled a little by walls built off the plan).
+  const Eigen::Isometry3d corrected = ConsensusBimTMap(building, graph, bim_T_map, config);
+  const std::vector<detail::PlaneInB> planes = detail::PlanesInB(graph, corrected);
+  std::vector<bool> explained;
+  std::map<int, SurfaceFit> best = BestFits(surfaces, planes, config, &explained);
   const std::vector<detail::PathStep> path = detail::WalkedPathInB(graph, corrected);
-  // The storey walked on: walls standing at the robot's median height (in B).
-  std::vector<double> heights;
-  for (const auto& k : graph.keyframes) heights.push_back((corrected * k.pose.translation()).z());
-  std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
-  const double z_robot = heights.empty() ? 0.0 : heights[heights.size() / 2];
+  const double z_robot = detail::RobotHeight(graph, corrected);  // the storey walked on
   std::vector<WallDeviation> out;
   for (const auto& w : building.walls) {
     WallDeviation r;

@@ -13,7 +13,8 @@ double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return a.x() * b.y() - a.y() * b.x();
 }
 
-/// Whether segment p-q crosses the wall s-e away from its ends and outside the gaps.
+}  // namespace
+
 bool Through(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& s,
              const Eigen::Vector2d& e, const std::vector<Gap>& gaps) {
   const Eigen::Vector2d r = q - p, w = e - s;
@@ -28,8 +29,6 @@ bool Through(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Ve
     if ((x - g.at).norm() <= g.reach) return false;
   return true;
 }
-
-}  // namespace
 
 std::vector<PlaneInB> PlanesInB(const sgraph::SGraph& graph, const Eigen::Isometry3d& bim_T_map) {
   std::map<int, Eigen::Vector2d> keyframes;
@@ -73,6 +72,14 @@ std::vector<PathStep> WalkedPathInB(const sgraph::SGraph& graph,
     if ((b - a).norm() <= 2.0) out.emplace_back(a, b);
   }
   return out;
+}
+
+double RobotHeight(const sgraph::SGraph& graph, const Eigen::Isometry3d& bim_T_map) {
+  std::vector<double> heights;
+  for (const auto& k : graph.keyframes) heights.push_back((bim_T_map * k.pose.translation()).z());
+  if (heights.empty()) return 0.0;
+  std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+  return heights[heights.size() / 2];
 }
 
 int RaysThrough(const Eigen::Vector2d& start, const Eigen::Vector2d& end,

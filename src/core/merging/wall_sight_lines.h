@@ -1,6 +1,7 @@
 #pragma once
 
-// Private to wall_deviations.cpp: the S-Graph's planes, path and sight lines in the BIM frame.
+// Private to wall_deviations.cpp and doorway_status.cpp: the S-Graph's planes, path and sight lines
+// in the BIM frame.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <utility>
@@ -37,6 +38,14 @@ struct Gap {
   Eigen::Vector2d at;
   double reach;
 };
+
+/// Whether segment p-q crosses the segment s-e (a wall's mid-line, or an opening in it) strictly
+/// between p and q, 0.1 m or more from s and e, and farther than each gap's reach from its point.
+bool Through(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& s,
+             const Eigen::Vector2d& e, const std::vector<Gap>& gaps);
+
+/// The robot's median keyframe height in B: the storey walked on.
+double RobotHeight(const sgraph::SGraph& graph, const Eigen::Isometry3d& bim_T_map);
 
 /// How often the robot's sight or path went through the segment start-end (a wall's mid-line)
 /// outside `gaps` and 0.1 m from its ends: each walked step across it, and each point along an

@@ -218,6 +218,13 @@ std::string ScenarioConfig::Validate() const {
   for (std::size_t i = 0; i < scene.deviations.size(); ++i) {
     const DeviationConfig& d = scene.deviations[i];
     const std::string f = "scene.deviations[" + std::to_string(i) + "]";
+    if (d.type == DeviationConfig::Type::kCloseDoorway) {
+      if (d.doorway.name.empty() && d.doorway.id < 0)
+        return f + ".doorway: missing (a doorway name or A-Graph doorway id)";
+      e = Range(f + ".height", d.height, 0.0, 20.0, "m");
+      if (!e.empty()) return e;
+      continue;
+    }
     if (d.type != DeviationConfig::Type::kAddWall && d.wall.name.empty() && d.wall.id < 0) {
       return f + ".wall: missing (a wall name or A-Graph wall id)";
     }

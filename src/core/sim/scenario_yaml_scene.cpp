@@ -22,7 +22,9 @@ WallRef ParseWallRef(const YAML::Node& n, const std::string& f) {
 }
 
 DeviationConfig ParseDeviation(const YAML::Node& n, const std::string& f) {
-  CheckMap(n, f, {"type", "wall", "offset", "angle_deg", "start", "end", "thickness", "height"});
+  CheckMap(
+      n, f,
+      {"type", "wall", "doorway", "offset", "angle_deg", "start", "end", "thickness", "height"});
   DeviationConfig d;
   std::string type;
   Get(n, f, "type", &type);
@@ -46,9 +48,15 @@ DeviationConfig ParseDeviation(const YAML::Node& n, const std::string& f) {
     d.end = Vec2(n["end"], f + ".end");
     Get(n, f, "thickness", &d.thickness);
     Get(n, f, "height", &d.height);
+  } else if (type == "close_doorway") {
+    d.type = DeviationConfig::Type::kCloseDoorway;
+    if (!n["doorway"]) Fail(f + ".doorway", "missing (a doorway name or A-Graph doorway id)");
+    d.doorway = ParseWallRef(n["doorway"], f + ".doorway");
+    Get(n, f, "height", &d.height);
   } else {
     Fail(f + ".type",
-         "must be move_wall, rotate_wall, remove_wall or add_wall, got '" + type + "'");
+         "must be move_wall, rotate_wall, remove_wall, add_wall or close_doorway, got '" + type +
+             "'");
   }
   return d;
 }

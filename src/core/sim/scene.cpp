@@ -67,6 +67,38 @@ long IfcIdOfObject(const std::string& name) {
   }
 }
 
+/// close_doorway: the doorway `ref` (by id, or by name unique on the storey; a door or an
+/// opening in a wall) filled by a box across its width (+2 cm into the jambs), the wall's
+/// thickness (at least 5 cm), `height` tall (0: to the storey's height).
+Result<std::string> CloseDoorway(const agraph::AGraph& graph, int storey, const WallRef& ref,
+                                 double height, double floor_z, float reflectivity,
+                                 const std::string& field, SceneMesh* scene) {
+  using R = Result<std::string>;
+  int found = -1;
+  for (const agraph::Doorway& d : graph.doorways) {
+    if (ref.id >= 0 ? d.id != ref.id : (d.storey != storey || d.name != ref.name)) continue;
+    if (found >= 0) return R::Error(field + ": doorway name '" + ref.name + "' is not unique");
+    found = d.id;
+  }
+  if (found < 0)
+    return R::Error(field + ": no doorway " +
+                    (ref.id >= 0 ? "with A-Graph id " + std::to_string(ref.id)
+                                 : "named '" + ref.name + "' on storey " + std::to_string(storey)));
+  const agraph::Doorway& d = graph.doorways[found];
+  const agraph::Wall* wall = nullptr;
+  for (const agraph::Wall& w : graph.walls)
+    if (w.id == d.wall) wall = &w;
+  const int surface = wall ? (wall->surface_a >= 0 ? wall->surface_a : wall->surface_b) : -1;
+  if (!d.InWall() || surface < 0 || d.width <= 0.0)
+    return R::Error(field + ": doorway '" + d.name + "' is not an opening in a wall");
+  const Eigen::Vector3d n = graph.surfaces[surface].plane.normal;
+  scene->AddBox(d.position.head<2>(), floor_z,
+                {d.width + 0.02, std::max(wall->thickness, 0.05), height},
+                std::atan2(n.x(), -n.y()), reflectivity);
+  return R::Ok("closed doorway '" + d.name + "' (" + std::to_string(d.width) + " m, " +
+               std::to_string(height) + " m high)");
+}
+
 Result<int> ResolveWall(const agraph::AGraph& graph, int storey, const WallRef& ref,
                         const std::string& field) {
   if (ref.id >= 0) {
@@ -121,6 +153,14 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
       scene.AddBox(0.5 * (d.start + d.end), floor_z, {dir.norm(), d.thickness, height},
                    std::atan2(dir.y(), dir.x()), static_cast<float>(config.wall_reflectivity));
       log.lines.push_back(field + ": added a " + std::to_string(dir.norm()) + " m partition");
+      continue;
+    }
+    if (d.type == DeviationConfig::Type::kCloseDoorway) {
+      const Result<std::string> closed =
+          CloseDoorway(graph, storey, d.doorway, d.height > 0.0 ? d.height : storey_height, floor_z,
+                       static_cast<float>(config.wall_reflectivity), field + ".doorway", &scene);
+      if (!closed.ok()) return R::Error(closed.error());
+      log.lines.push_back(field + ": " + closed.value());
       continue;
     }
     const Result<int> wall = ResolveWall(graph, storey, d.wall, field + ".wall");

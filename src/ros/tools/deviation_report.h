@@ -1,6 +1,7 @@
 #pragma once
 // replay_pipeline --deviations: each wall as built against the plan under the final merge
-// (merging::ClassifyWalls, issue 21), as JSON for scripts/deviation_report.py (make report).
+// (merging::ClassifyWalls, issue 21) and each door or opening present or closed
+// (merging::ClassifyDoorways), as JSON for scripts/deviation_report.py (make report).
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "is_graphs/geometry/se3.h"
+#include "is_graphs/merging/doorway_status.h"
 #include "is_graphs/merging/wall_deviations.h"
 #include "is_graphs/pipeline/localization_pipeline.h"
 
@@ -58,6 +60,23 @@ inline bool WriteDeviations(const std::string& path, const agraph::AGraph& build
     std::cerr << "replay_pipeline: warning: " << unnamed
               << " walls have no IFC GlobalId: reported by A-Graph wall id\n";
   out["walls"] = list;
+  nlohmann::json doors = nlohmann::json::array();
+  for (const auto& d : merging::ClassifyDoorways(building, graph, localization.bim_T_map(), config,
+                                                 merging::DoorwayDeviationConfig{}))
+    doors.push_back({{"doorway_id", d.doorway_id},
+                     {"guid", d.guid},
+                     {"name", d.name},
+                     {"kind", agraph::ToString(d.kind)},
+                     {"wall_id", d.wall_id},
+                     {"status", merging::ToString(d.status)},
+                     {"position", {d.position.x(), d.position.y()}},
+                     {"width_m", d.width},
+                     {"walked_through", d.walked_through},
+                     {"rays_through", d.rays_through},
+                     {"blocked_views", d.blocked_views},
+                     {"s_doorways", d.s_doorways},
+                     {"s_planes", d.s_planes}});
+  out["doorways"] = doors;
   nlohmann::json keyframes = nlohmann::json::array();
   for (const auto& k : graph.keyframes) {
     const Eigen::Vector3d p = localization.bim_T_map() * k.pose.translation();
