@@ -217,6 +217,20 @@ TEST(WallDeviations, AWallWithoutGlobalIdIsReportedByItsId) {
   EXPECT_EQ(Wall(r, 4).status, WallStatus::kMoved);
 }
 
+TEST(WallDeviations, TheMidLineIsInsideTheWallWhicheverFaceItHas) {
+  // The partition (faces x = 4.05 and 3.95, 10 cm thick) with both faces, with only its
+  // surface_b, and with only its surface_a: its mid-line is at x = 4.0 each time.
+  for (const int keep : {-1, 5, 4}) {
+    agraph::AGraph g = Storey();
+    if (keep == 5) g.walls[4].surface_a = -1;
+    if (keep == 4) g.walls[4].surface_b = -1;
+    const auto r = merging::ClassifyWalls(
+        g, Seen(kBothRooms, Plus(kExterior, Partition(0, 0)), SomeMotion()), SomeMotion(), {});
+    EXPECT_NEAR(Wall(r, 4).start.x(), 4.0, 1e-9) << "kept surface " << keep;
+    EXPECT_NEAR(Wall(r, 4).end.x(), 4.0, 1e-9) << "kept surface " << keep;
+  }
+}
+
 TEST(WallDeviations, ConfigValidationNamesTheParameter) {
   merging::WallDeviationConfig c;
   EXPECT_EQ(c.Validate(), "");

@@ -187,8 +187,9 @@ std::vector<WallDeviation> ClassifyWalls(const agraph::AGraph& building,
     const Eigen::Vector2d n_first = first->plane.normal.head<2>().normalized();
     const double along = a ? 1.0 : -1.0;  // offsets along surface_a's normal
     r.normal = along * n_first;
-    r.start = first->start - along * 0.5 * w.thickness * n_first;
-    r.end = first->end - along * 0.5 * w.thickness * n_first;
+    // The mid-line is half the thickness behind the face, whichever face it is.
+    r.start = first->start - 0.5 * w.thickness * n_first;
+    r.end = first->end - 0.5 * w.thickness * n_first;
     double weight = 0.0, offset = 0.0, angle = 0.0;
     std::vector<double> offsets;
     for (const agraph::WallSurface* s : {a, b}) {
