@@ -53,5 +53,11 @@ const char* ToString(Orientation orientation);
 /// Inverse of ToString; nullopt for any other string.
 std::optional<Orientation> OrientationFromString(const std::string& text);
 
+/// Orthonormal basis [b1 b2] of the plane tangent to the unit sphere at n (3x2): b1 = n × e_k /
+/// |·| with k the axis of n's smallest component, b2 = n × b1. Every plane residual and
+/// information of the project uses this one construction (the S-Graph's informations are on
+/// (Bᵀ δn, δd)).
+Eigen::Matrix<double, 3, 2> TangentBasis(const Eigen::Vector3d& n);
+
 }  // namespace geometry
 }  // namespace is_graphs

@@ -10,11 +10,8 @@
 namespace is_graphs {
 namespace sgraph {
 
-/// Orthonormal basis [b1 b2] of the plane tangent to the unit sphere at n (3x2). The same
-/// construction as agraph::PlanePriorCost: b1 = n × e_k / |·| with k the axis of n's smallest
-/// component, b2 = n × b1. The minimal plane tangent (2 normal, 1 offset) of the S-Graph's
-/// informations is (B^T δn, δd).
-Eigen::Matrix<double, 3, 2> TangentBasis(const Eigen::Vector3d& n);
+/// geometry::TangentBasis, under the name the S-Graph code uses.
+using geometry::TangentBasis;
 
 /// A least-squares plane with its uncertainty.
 struct PlaneFit {

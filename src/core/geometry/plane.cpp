@@ -64,5 +64,15 @@ std::optional<Orientation> OrientationFromString(const std::string& text) {
   return std::nullopt;
 }
 
+Eigen::Matrix<double, 3, 2> TangentBasis(const Eigen::Vector3d& n) {
+  Eigen::Index axis = 0;
+  n.cwiseAbs().minCoeff(&axis);
+  const Eigen::Vector3d b1 = n.cross(Eigen::Vector3d::Unit(axis)).normalized();
+  Eigen::Matrix<double, 3, 2> basis;
+  basis.col(0) = b1;
+  basis.col(1) = n.cross(b1).normalized();
+  return basis;
+}
+
 }  // namespace geometry
 }  // namespace is_graphs

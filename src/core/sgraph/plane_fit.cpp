@@ -7,16 +7,6 @@
 namespace is_graphs {
 namespace sgraph {
 
-Eigen::Matrix<double, 3, 2> TangentBasis(const Eigen::Vector3d& n) {
-  Eigen::Index axis = 0;
-  n.cwiseAbs().minCoeff(&axis);
-  const Eigen::Vector3d b1 = n.cross(Eigen::Vector3d::Unit(axis)).normalized();
-  Eigen::Matrix<double, 3, 2> basis;
-  basis.col(0) = b1;
-  basis.col(1) = n.cross(b1).normalized();
-  return basis;
-}
-
 std::optional<PlaneFit> FitPlane(const PointList& points, const std::vector<int>& indices,
                                  double point_sigma, int max_effective_points,
                                  const std::optional<Eigen::Vector3d>& vertical_about) {

@@ -26,13 +26,7 @@ class PlanePriorCost {
  public:
   PlanePriorCost(const geometry::Plane& measured, const Eigen::Matrix3d& sqrt_information)
       : measured_d_(measured.d), sqrt_information_(sqrt_information) {
-    const Eigen::Vector3d& n = measured.normal;
-    // Any vector not parallel to n seeds the basis: the axis along n's smallest component.
-    Eigen::Index axis = 0;
-    n.cwiseAbs().minCoeff(&axis);
-    const Eigen::Vector3d b1 = n.cross(Eigen::Vector3d::Unit(axis)).normalized();
-    tangent_basis_.col(0) = b1;
-    tangent_basis_.col(1) = n.cross(b1).normalized();
+    tangent_basis_ = geometry::TangentBasis(measured.normal);
   }
 
   template <typename T>

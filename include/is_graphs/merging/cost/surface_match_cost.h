@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include "is_graphs/geometry/plane.h"
 #include "is_graphs/geometry/se3.h"
 
 namespace is_graphs {
@@ -31,11 +32,7 @@ class SurfaceMatchCost {
   SurfaceMatchCost(const Eigen::Vector3d& a_normal, double z,
                    const Eigen::Matrix3d& sqrt_information)
       : z_(z), sqrt_information_(sqrt_information) {
-    Eigen::Index axis = 0;
-    a_normal.cwiseAbs().minCoeff(&axis);
-    const Eigen::Vector3d b1 = a_normal.cross(Eigen::Vector3d::Unit(axis)).normalized();
-    basis_.col(0) = b1;
-    basis_.col(1) = a_normal.cross(b1).normalized();
+    basis_ = geometry::TangentBasis(a_normal);
   }
 
   template <typename T>
