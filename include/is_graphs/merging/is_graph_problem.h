@@ -84,9 +84,13 @@ struct MergeSolution {
 /// The pair residuals are against the plan (a deviation does not make a pair consistent).
 /// `initial` and `prior` are (x, y, yaw); `z` is the height of M in B. Pairs naming nodes that
 /// are not in the graphs are skipped. The A-Graph must be valid (agraph::ValidateAGraph).
+/// `initial_deviations` (wall id -> offset, angle): where the wall deviation states start (the
+/// previous solve's; zero for the walls not in it), so a wall off the plan need not be found
+/// again from the plan on every revision.
 MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_graph,
                          const MatchPairs& pairs, const Eigen::Vector3d& initial,
-                         const Eigen::Vector3d& prior, double z, const MergerConfig& config);
+                         const Eigen::Vector3d& prior, double z, const MergerConfig& config,
+                         const std::map<int, Eigen::Vector2d>& initial_deviations = {});
 
 }  // namespace merging
 }  // namespace is_graphs

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <map>
 #include <string>
 
 #include "is_graphs/agraph/agraph.h"
@@ -83,6 +84,7 @@ class Merger {
   MatchPairs pairs_;
   Eigen::Vector3d xi_{Eigen::Vector3d::Zero()};     // B_x_M: x, y, yaw
   Eigen::Vector3d prior_{Eigen::Vector3d::Zero()};  // the last UNIQUE match's guess
+  std::map<int, Eigen::Vector2d> deviations_;       // the last solve's wall deviation states
   double match_z_{0.0};
 };
 

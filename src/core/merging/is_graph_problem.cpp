@@ -62,7 +62,8 @@ Eigen::Isometry3d MergeSolution::BimTMap() const {
 
 MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_graph,
                          const MatchPairs& pairs, const Eigen::Vector3d& initial,
-                         const Eigen::Vector3d& prior, double z, const MergerConfig& config) {
+                         const Eigen::Vector3d& prior, double z, const MergerConfig& config,
+                         const std::map<int, Eigen::Vector2d>& initial_deviations) {
   MergeSolution out;
   out.z = z;
   ceres::Problem problem;  // owns costs, losses and manifolds
@@ -95,7 +96,7 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
       held.insert(block);
     }
   };
-  WallDeviationBlocks deviations(a_graph, config);
+  WallDeviationBlocks deviations(a_graph, config, initial_deviations);
   const int num_surfaces = static_cast<int>(a_graph.surfaces.size());
   const int num_rooms = static_cast<int>(a_graph.rooms.size());
   std::vector<std::pair<int, int>> surface_pairs, room_pairs;

@@ -58,6 +58,7 @@ std::string Merger::SetAGraph(const agraph::AGraph& graph) {
 void Merger::Reset() {
   merged_ = false;
   pairs_ = MatchPairs();
+  deviations_.clear();
 }
 
 double Merger::HeightOfMap(const sgraph::SGraph& s_graph, double fallback) const {
@@ -131,7 +132,7 @@ MergeOutput Merger::OnSGraph(const sgraph::SGraph& s_graph) {
 MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) {
   MergeOutput out;
   const double z = HeightOfMap(s_graph, match_z_);
-  out.solution = SolveMerge(a_graph_, s_graph, pairs_, xi_, prior_, z, config_);
+  out.solution = SolveMerge(a_graph_, s_graph, pairs_, xi_, prior_, z, config_, deviations_);
   out.consistency = CheckConsistency(out.solution, config_, starting);
   out.evidence = CheckRecentEvidence(a_graph_, s_graph, out.solution, config_);
   if (out.consistency.consistent && out.evidence.contradicts) {
@@ -151,6 +152,8 @@ MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) 
   for (int s : out.consistency.outlier_surfaces) pairs_.surfaces.erase(s);
   for (int s : out.consistency.outlier_rooms) pairs_.rooms.erase(s);
   xi_ = out.solution.bim_x_map;
+  deviations_.clear();
+  for (const auto& w : out.solution.walls) deviations_[w.wall_id] = {w.offset, w.angle};
   merged_ = true;
   out.merged = true;
   out.event = starting ? MergeEvent::kLocalized : MergeEvent::kUpdated;

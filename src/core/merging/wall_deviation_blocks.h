@@ -21,8 +21,12 @@ namespace merging {
 /// each with its Cauchy prior at the plan.
 class WallDeviationBlocks {
  public:
-  WallDeviationBlocks(const agraph::AGraph& a_graph, const MergerConfig& config)
-      : a_graph_(a_graph), config_(config), wall_of_(a_graph.surfaces.size(), -1) {
+  WallDeviationBlocks(const agraph::AGraph& a_graph, const MergerConfig& config,
+                      const std::map<int, Eigen::Vector2d>& initial)
+      : a_graph_(a_graph),
+        config_(config),
+        initial_(initial),
+        wall_of_(a_graph.surfaces.size(), -1) {
     if (!config.estimate_wall_deviations) return;
     for (const agraph::Wall& w : a_graph.walls) {
       for (int surface : {w.surface_a, w.surface_b})
@@ -42,7 +46,10 @@ class WallDeviationBlocks {
   /// The wall's deviation block (offset, angle), added to `problem` with its prior (under a
   /// Cauchy loss) the first time; counts the pairs resting on it.
   double* Block(int wall, ceres::Problem& problem) {
-    auto [it, added] = blocks_.try_emplace(wall, Eigen::Vector2d::Zero());
+    const auto start = initial_.find(wall);
+    auto [it, added] = blocks_.try_emplace(
+        wall, start != initial_.end() && start->second.allFinite() ? start->second
+                                                                   : Eigen::Vector2d::Zero());
     ++pairs_[wall];
     if (added) {
       problem.AddParameterBlock(it->second.data(), 2);
@@ -60,6 +67,7 @@ class WallDeviationBlocks {
  private:
   const agraph::AGraph& a_graph_;
   const MergerConfig& config_;
+  const std::map<int, Eigen::Vector2d>& initial_;
   std::vector<int> wall_of_;
   std::map<int, Eigen::Vector2d> blocks_;  // wall id -> (offset, angle); stable addresses
   std::map<int, int> pairs_;
