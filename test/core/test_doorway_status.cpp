@@ -7,6 +7,7 @@
 
 #include "is_graphs/merging/doorway_status.h"
 #include "matching_test_helpers.h"
+#include "two_room_storey.h"
 
 namespace is_graphs {
 namespace {
@@ -17,25 +18,7 @@ using V = Eigen::Vector2d;
 /// Walls 0-3 the exterior (S, E, N, W; inner faces), wall 4 the partition at x = 4 (0.1 m thick)
 /// with door 0 (0.9 m at y = 2) and a virtual doorway 1 (no wall).
 agraph::AGraph Storey() {
-  agraph::AGraph g;
-  const std::vector<std::array<V, 3>> faces = {
-      {{{0, 0}, {8, 0}, {0, 1}}},       {{{8, 0}, {8, 4}, {-1, 0}}},
-      {{{8, 4}, {0, 4}, {0, -1}}},      {{{0, 4}, {0, 0}, {1, 0}}},
-      {{{4.05, 0}, {4.05, 4}, {1, 0}}}, {{{3.95, 4}, {3.95, 0}, {-1, 0}}}};
-  for (size_t i = 0; i < faces.size(); ++i) {
-    const int wall = std::min<int>(static_cast<int>(i), 4);
-    auto s =
-        testing::MakeSurface(static_cast<int>(i), wall, 0, faces[i][0], faces[i][1], faces[i][2]);
-    s.z_max = 3.0;
-    g.surfaces.push_back(s);
-  }
-  for (int w = 0; w < 5; ++w) {
-    agraph::Wall wall;
-    wall.id = w, wall.name = "wall" + std::to_string(w);
-    wall.surface_a = w, wall.surface_b = w == 4 ? 5 : -1;
-    wall.thickness = w == 4 ? 0.1 : 0.0;
-    g.walls.push_back(wall);
-  }
+  agraph::AGraph g = testing::TwoRoomStorey();
   agraph::Doorway door;
   door.id = 0, door.guid = "1hOSvn6df7F8_7GcBWlR72", door.name = "D1", door.wall = 4;
   door.position = Eigen::Vector3d(4.0, 2.0, 0.0), door.width = 0.9, door.height = 2.1;

@@ -6,6 +6,7 @@
 
 #include "is_graphs/merging/wall_deviations.h"
 #include "matching_test_helpers.h"
+#include "two_room_storey.h"
 
 namespace is_graphs {
 namespace {
@@ -16,29 +17,10 @@ const double kDeg = M_PI / 180.0;
 /// Walls 0-3 the exterior (S, E, N, W; inner faces only matter), wall 4 the partition at x = 4
 /// (0.1 m thick; surface_a faces +x). Doorless. The partition's GUID is `partition_guid`.
 agraph::AGraph Storey(const std::string& partition_guid = "2O2Fr$t4X7Zf8NOew3FLOH") {
-  agraph::AGraph g;
-  const std::vector<std::array<Eigen::Vector2d, 3>> faces = {
-      // start, end, normal (inward)
-      {{{0, 0}, {8, 0}, {0, 1}}},       {{{8, 0}, {8, 4}, {-1, 0}}},
-      {{{8, 4}, {0, 4}, {0, -1}}},      {{{0, 4}, {0, 0}, {1, 0}}},
-      {{{4.05, 0}, {4.05, 4}, {1, 0}}}, {{{3.95, 4}, {3.95, 0}, {-1, 0}}}};
-  for (size_t i = 0; i < faces.size(); ++i) {
-    const int wall = std::min<int>(static_cast<int>(i), 4);
-    auto s =
-        testing::MakeSurface(static_cast<int>(i), wall, 0, faces[i][0], faces[i][1], faces[i][2]);
-    s.z_max = 3.0;
-    g.surfaces.push_back(s);
-  }
-  for (int w = 0; w < 5; ++w) {
-    agraph::Wall wall;
-    wall.id = w;
-    wall.guid = w == 4 ? partition_guid : "0000000000000000000" + std::to_string(w) + "AB";
-    wall.name = w == 4 ? "partition" : "exterior" + std::to_string(w);
-    wall.surface_a = w;
-    wall.surface_b = w == 4 ? 5 : -1;
-    wall.thickness = w == 4 ? 0.1 : 0.0;
-    g.walls.push_back(wall);
-  }
+  agraph::AGraph g = testing::TwoRoomStorey();
+  for (auto& wall : g.walls)
+    wall.guid =
+        wall.id == 4 ? partition_guid : "0000000000000000000" + std::to_string(wall.id) + "AB";
   return g;
 }
 
