@@ -45,7 +45,9 @@ def read_scenario(path):
     if not isinstance(s, dict) or not s.get("building"):
         raise EvaluationError(f"{path}: no 'building:' in the scenario")
     building = s["building"] if os.path.isabs(s["building"]) else os.path.join(REPO, s["building"])
-    return building, str(s.get("storey", "") or "")
+    storey = str(s.get("storey", "") or "")
+    told = s.get("localizer_storey", storey)  # "" = the whole building (issue 22)
+    return building, storey, str(told or "")
 
 
 def find_bags(yamls):
@@ -133,6 +135,7 @@ def evaluate_outputs(prefix):
     r = {"bag_seconds": run["bag_seconds"], "walked_m": run["walked_m"],
          "localized": est is not None, "localized_at_end": run.get("localized_at_end", False),
          "unique_matches": len(uniques), "wrong_matches": run.get("wrong_matches", 0),
+         "wrong_storey_matches": run.get("wrong_storey_matches", 0),
          "map_cloud_error": run.get("map_cloud_error"), "keyframes": run["keyframes"],
          "real_time_factor": run["real_time_factor"], "replay_seconds": run["wall_seconds"],
          "peak_rss_mib": run["peak_rss_mib"], "_t0": t0}
@@ -165,13 +168,13 @@ def evaluate_outputs(prefix):
 def evaluate_scenario(name, yaml_path, bag, note, replay, out_dir):
     from evaluation_plots import error_plot, trajectory_plot
 
-    building, storey = read_scenario(yaml_path)
+    building, storey, told = read_scenario(yaml_path)
     os.makedirs(os.path.join(out_dir, name), exist_ok=True)
     prefix = os.path.join(out_dir, name, "run")
-    run_replay(replay, bag, building, storey, prefix)
+    run_replay(replay, bag, building, told, prefix)
     r = evaluate_outputs(prefix)
     r.update({"bag": os.path.relpath(bag, REPO), "building": os.path.relpath(building, REPO),
-              "storey": storey, "note": note})
+              "storey": storey, "localizer_storey": told, "note": note})
     graph = agraph_json(building)
     trajectory_plot(name, r["_truth"], r["_series"], graph, storey,
                     os.path.join(out_dir, name, "trajectory.png"))
@@ -181,7 +184,7 @@ def evaluate_scenario(name, yaml_path, bag, note, replay, out_dir):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("scenarios", nargs="*", help="scenario YAMLs (default: bags/D*, R*, H*)")
+    parser.add_argument("scenarios", nargs="*", help="scenario YAMLs (default: bags/D*, R*, H*, S*, M*)")
     parser.add_argument("--out", default=os.path.join(REPO, ".ws", "evaluate"))
     parser.add_argument("--replay",
                         default=os.path.join(REPO, ".ws", "devel", "lib", "is_graphs",
@@ -190,7 +193,7 @@ def main():
     from evaluation_report import write_reports
 
     yamls = args.scenarios or sorted(
-        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml", "S*.yaml")
+        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml", "S*.yaml", "M*.yaml")
         for y in glob.glob(os.path.join(REPO, "bags", pattern)) if not y.endswith("_short.yaml"))
     if not os.access(args.replay, os.X_OK):
         print(f"evaluate: error: {args.replay} not built (make build)", file=sys.stderr)

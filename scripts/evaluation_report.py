@@ -66,8 +66,11 @@ def details(results):
         cloud = (f"{c['rmse_m']:.3f} / {c['median_m']:.3f} ({100 * c['used_share']:.0f} % of "
                  f"{c['points']})" if c else DASH)
         run = f"{r['replay_seconds']:.0f} ({r['real_time_factor']:.0f}×, {r['peak_rss_mib']:.0f})"
+        wrong = f"{r['wrong_matches']}"
+        if r.get("localizer_storey", None) == "":  # the whole building loaded (issue 22)
+            wrong += f" (whole building; {r.get('wrong_storey_matches', 0)} on another storey)"
         lines.append(f"| {name} | {loc} | {first} | {pose} | {r['unique_matches']} / "
-                     f"{r['wrong_matches']} | {xy} | {_z(r.get('isgraphs'))} | {yaw} | {cloud} | "
+                     f"{wrong} | {xy} | {_z(r.get('isgraphs'))} | {yaw} | {cloud} | "
                  f"{run} |")
     return lines
 

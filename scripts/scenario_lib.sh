@@ -11,12 +11,13 @@ scenario_bag() {
   fi
 }
 
-# scenario_building SCENARIO: sets `building` (absolute) and `storey` ("" when none) from it.
+# scenario_building SCENARIO: sets `building` (absolute) and `storey` ("" when none: the whole
+# building) from it; `storey` is what the localizer is told: `localizer_storey` where given.
 scenario_building() {
   read -r building storey < <("${py}" - "$1" <<'PYEOF'
 import sys, yaml
 s = yaml.safe_load(open(sys.argv[1]))
-print(s["building"], str(s.get("storey", "")) or '""')
+print(s["building"], str(s.get("localizer_storey", s.get("storey", ""))) or '""')
 PYEOF
 )
   [ "${storey}" = '""' ] && storey=""

@@ -63,6 +63,8 @@ is_graphs::GraphMatch ToMsg(const matching::GraphMatch& match) {
   msg.score = match.score;
   msg.hypotheses = match.hypotheses;
   msg.bim_T_map = ToPose(match.bim_T_map);
+  msg.storey_id = match.storey;
+  msg.competing_storey_ids.assign(match.competing_storeys.begin(), match.competing_storeys.end());
   return msg;
 }
 
@@ -88,6 +90,8 @@ matching::GraphMatch FromMsg(const is_graphs::GraphMatch& msg) {
   match.score = msg.score;
   match.hypotheses = msg.hypotheses;
   match.bim_T_map = FromPose(msg.bim_T_map);
+  match.storey = msg.storey_id;
+  match.competing_storeys.assign(msg.competing_storey_ids.begin(), msg.competing_storey_ids.end());
   return match;
 }
 

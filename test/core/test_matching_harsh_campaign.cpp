@@ -187,9 +187,9 @@ TEST(MatchingHarshCampaign, ADoubtPaysForTheWallsItWalksThrough) {
 }
 
 // Walls seen through doorways cannot lie behind a wall: trial 631 of the harsh campaign (default
-// seed; the office, 2 rooms; trial 211 before converter 2) is AMBIGUOUS without the sight lines (the twin explains the pairs
-// and the planes as well) and UNIQUE and right with them: under the twin, planes the robot saw
-// through a doorway lie behind an interior wall of the plan.
+// seed; the office, 2 rooms; trial 211 before converter 2) is AMBIGUOUS without the sight lines
+// (the twin explains the pairs and the planes as well) and UNIQUE and right with them: under the
+// twin, planes the robot saw through a doorway lie behind an interior wall of the plan.
 TEST(MatchingHarshCampaign, APlaneSeenThroughADoorwayCannotLieBehindTheTwinsWall) {
   const auto buildings = testing::CampaignBuildings();
   if (buildings.size() < 10) GTEST_SKIP() << "needs the ten campaign buildings";

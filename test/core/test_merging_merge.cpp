@@ -308,6 +308,32 @@ TEST(Merge, BimToOdomFollowsTheOdometryFrameOfTheMergedRevision) {
         << "keyframe " << k.id;
 }
 
+TEST(Merge, BimToOdomPutsTheNewestKeyframeAtItsHeightUnderATiltedOdometry) {
+  // Odometry's frame is tilted 0.5 deg from M's about y and its origin 30 m away (a long walk
+  // with a little roll/pitch left between the S-Graph and odometry). B <- odom is gravity-aligned
+  // (yaw only), so it cannot hold the tilt: it must lose it at the newest keyframe, not carry it
+  // over the 30 m lever arm into z (0.26 m; AC11's second floor showed it).
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(-1.0, 4.0, 20.0 * kDeg, 6.0);
+  SyntheticCase c = MakeCase(building, truth, 0.0);
+  Eigen::Isometry3d odom_T_map = geometry::IsometryFromXYYaw(30.0, 0.0, 0.0, 0.0);
+  odom_T_map.linear() = Eigen::AngleAxisd(0.5 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  for (auto& k : c.s.graph.keyframes) k.odom_pose = odom_T_map * k.pose;
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
+  ASSERT_TRUE(out.merged) << out.message;
+  const sgraph::Keyframe& newest = c.s.graph.keyframes.back();
+  const Eigen::Vector3d at = (out.bim_T_odom * newest.odom_pose).translation();
+  const Eigen::Vector3d want = (truth * newest.pose).translation();
+  std::printf("newest keyframe under the tilted odometry: off by %.4f m in z, %.4f m in x-y\n",
+              std::abs(at.z() - want.z()), (at - want).head<2>().norm());
+  EXPECT_NEAR(at.z(), want.z(), 2e-3);
+  EXPECT_LT((at - want).head<2>().norm(), 2e-3);
+  EXPECT_NEAR(geometry::Yaw(out.bim_T_odom * newest.odom_pose), geometry::Yaw(truth * newest.pose),
+              1e-3);
+}
+
 TEST(RecentEvidence, WallsSeenNowMustLieOnTheBim) {
   const agraph::AGraph building = TwoRooms();
   const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(2.0, 1.0, 30.0 * kDeg, 0.0);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/pipeline/evaluation.h"
@@ -92,6 +93,23 @@ TEST(PipelineEvaluation, CloudErrorOnKnownOffsets) {
   tight.max_distance = 0.03;
   EXPECT_EQ(CloudAgainstWallSurfaces(cloud, room, tight).used, 100);
   EXPECT_EQ(CloudAgainstWallSurfaces({}, room).used, 0);
+}
+
+// Issue 22: the storey a robot stands on, from its height (the evaluation's wrong-storey check).
+TEST(PipelineEvaluation, StoreyAtHeightIsTheHighestFloorBelow) {
+  agraph::AGraph building;
+  for (const auto& [id, elevation] : {std::pair<int, double>{0, 0.0}, {1, -3.0}, {2, 3.55}}) {
+    agraph::Storey s;
+    s.id = id;
+    s.elevation = elevation;
+    building.storeys.push_back(s);
+  }
+  EXPECT_EQ(StoreyAtHeight(building, 0.5), 0);
+  EXPECT_EQ(StoreyAtHeight(building, -2.5), 1);
+  EXPECT_EQ(StoreyAtHeight(building, 4.05), 2);
+  EXPECT_EQ(StoreyAtHeight(building, 3.52), 2);  // within 5 cm below its floor: rounding
+  EXPECT_EQ(StoreyAtHeight(building, 3.40), 0);
+  EXPECT_EQ(StoreyAtHeight(building, -4.0), -1);
 }
 
 }  // namespace

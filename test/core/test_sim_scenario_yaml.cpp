@@ -18,6 +18,19 @@ void ExpectError(const std::string& text, const std::string& expected) {
   EXPECT_EQ(r.error().rfind("s.yaml", 0), 0u) << r.error();
 }
 
+TEST(SimScenarioYaml, LocalizerStoreyEmptyMeansTheWholeBuilding) {
+  const Result<ScenarioConfig> r = Parse(R"(
+building: bim/office.ifc
+storey: "1.OG"
+localizer_storey: ""
+trajectory: {rooms: [Corridor]}
+)");
+  ASSERT_TRUE(r.ok()) << r.error();
+  ASSERT_TRUE(r.value().localizer_storey.has_value());
+  EXPECT_EQ(*r.value().localizer_storey, "");
+  EXPECT_EQ(r.value().storey, "1.OG");
+}
+
 TEST(SimScenarioYaml, ReadsAFullScenario) {
   const Result<ScenarioConfig> r = Parse(R"(
 name: demo
@@ -51,6 +64,7 @@ scene:
   EXPECT_EQ(c.name, "demo");
   EXPECT_EQ(c.base_dir, "/repo");
   EXPECT_EQ(c.storey, "Ground floor");
+  EXPECT_FALSE(c.localizer_storey.has_value());  // the localizer is told `storey`
   EXPECT_EQ(c.seed, 7u);
   EXPECT_EQ(c.trajectory.rooms.size(), 2u);
   EXPECT_EQ(c.trajectory.start.room, "Corridor");

@@ -155,6 +155,14 @@ def test_bags_found_with_the_short_fallback(tmp_path):
     assert missing == ["D4_site", "R2_drops"]
 
 
+def test_localizer_storey(tmp_path):
+    s = tmp_path / "M.yaml"
+    s.write_text("building: bim/office.ifc\nstorey: '1.OG'\nlocalizer_storey: ''\n")
+    assert evaluate.read_scenario(str(s))[1:] == ("1.OG", "")
+    s.write_text("building: bim/office.ifc\nstorey: '1.OG'\n")
+    assert evaluate.read_scenario(str(s))[1:] == ("1.OG", "1.OG")
+
+
 def test_bad_scenario_is_named(tmp_path):
     bad = tmp_path / "X.yaml"
     bad.write_text("storey: 0\n")

@@ -174,8 +174,12 @@ TEST(GraphMatchConversions, RoundTripKeepsPairsAndDeviations) {
   a.deviations = {{4, 11, 0.31, -0.02, true}, {9, 14, -0.12, 0.2, false}};
   a.score = 2.5;
   a.hypotheses = 1;
+  a.storey = 3;
+  a.competing_storeys = {0, 2};
   const matching::GraphMatch b = ros_conversions::FromMsg(ros_conversions::ToMsg(a));
   EXPECT_EQ(b.status, a.status);
+  EXPECT_EQ(b.storey, 3);
+  EXPECT_EQ(b.competing_storeys, (std::vector<int>{0, 2}));
   EXPECT_EQ(b.s_graph_revision, 7u);
   ASSERT_EQ(b.surface_pairs.size(), 2u);
   ASSERT_EQ(b.doorway_pairs.size(), 1u);

@@ -4,11 +4,16 @@
 //
 //   always                 no pose_bim before the first LOCALIZED, and no pose_bim is wrong:
 //                          each within ~max_wrong_distance [m] and ~max_wrong_yaw_deg of ground
-//                          truth (localizing is allowed but not required unless expected);
+//                          truth in x, y, yaw, and within ~max_wrong_z [m] in z (1 m: another
+//                          storey) (localizing is allowed but not required unless expected);
+//   ~true_storey_id >= 0   the building's storey walked (the whole building loaded): every
+//                          UNIQUE graph_match names it (issue 22: never a wrong storey);
+//   ~storey_in_doubt       floors of one plan: some AMBIGUOUS graph_match has competing storeys,
+//                          the true one among its own and those;
 //   ~expect_localized      localized within ~max_seconds_to_localize of the bag start, still
 //                          localized at the end (unless a kidnap), at least ~min_poses poses,
-//                          the APE (x, y, no alignment) RMSE / max and the yaw RMSE / max within
-//                          bounds, tf bim -> map;
+//                          the APE (x, y, no alignment) RMSE / max, the z RMSE and the yaw
+//                          RMSE / max within bounds, tf bim -> map;
 //   ~kidnap_window > 0     the robot is carried (found as the jump in ground_truth/pose): LOST
 //                          within the window after the carry, no pose_bim while LOST, and the
 //                          poses from carry + window on are not wrong (the APE bounds apply to
@@ -61,6 +66,10 @@ struct Contract {
   double max_ape_rmse{0.05}, max_ape_max{0.10};
   double max_yaw_rmse_deg{1.0}, max_yaw_deg{2.0};
   double max_wrong_distance{0.5}, max_wrong_yaw_deg{5.0};
+  double max_ape_z_rmse{0.05};  // m (issue 22's z target)
+  double max_wrong_z{1.0};      // m: a pose a storey off is wrong
+  int true_storey_id{-1};       // -1: not checked (a storey given to the localizer)
+  bool storey_in_doubt{false};
   double kidnap_window{0.0};
   double max_seconds_to_relocalize{0.0};  // 0: relocalizing is not required
   double max_seconds_to_ambiguous{0.0};   // 0: not a symmetric building
@@ -81,6 +90,10 @@ Contract ReadContract() {
   pnh.param("max_yaw_deg", c.max_yaw_deg, c.max_yaw_deg);
   pnh.param("max_wrong_distance", c.max_wrong_distance, c.max_wrong_distance);
   pnh.param("max_wrong_yaw_deg", c.max_wrong_yaw_deg, c.max_wrong_yaw_deg);
+  pnh.param("max_ape_z_rmse", c.max_ape_z_rmse, c.max_ape_z_rmse);
+  pnh.param("max_wrong_z", c.max_wrong_z, c.max_wrong_z);
+  pnh.param("true_storey_id", c.true_storey_id, c.true_storey_id);
+  pnh.param("storey_in_doubt", c.storey_in_doubt, c.storey_in_doubt);
   pnh.param("kidnap_window", c.kidnap_window, c.kidnap_window);
   pnh.param("max_seconds_to_relocalize", c.max_seconds_to_relocalize, c.max_seconds_to_relocalize);
   pnh.param("max_seconds_to_ambiguous", c.max_seconds_to_ambiguous, c.max_seconds_to_ambiguous);
@@ -94,6 +107,7 @@ struct Paired {
   double stamp;
   double error_xy;   // m
   double error_yaw;  // rad, signed
+  double error_z;    // m, signed
 };
 
 class LocalizeTest : public ::testing::Test {
@@ -172,7 +186,8 @@ class LocalizeTest : public ::testing::Test {
       const Eigen::Isometry3d est = ros_conversions::FromPose(p.pose.pose);
       paired_.push_back({p.header.stamp.toSec(),
                          (est.translation() - it->second.translation()).head<2>().norm(),
-                         geometry::NormalizeAngle(geometry::Yaw(est) - geometry::Yaw(it->second))});
+                         geometry::NormalizeAngle(geometry::Yaw(est) - geometry::Yaw(it->second)),
+                         est.translation().z() - it->second.translation().z()});
     }
     // LOST intervals: from a LOST status to the next LOCALIZED one (or the end).
     double lost_from = -1.0;
@@ -280,11 +295,12 @@ TEST_F(LocalizeTest, ApeWithinBounds) {
   if (!c_.expect_localized)
     GTEST_SKIP() << Where() << "not expected to localize on this bag: no APE bound";
   ASSERT_TRUE(localized_seen_) << Where() << "not localized: no APE";
-  double sum_sq = 0.0, max_xy = 0.0, max_yaw = 0.0, sum_yaw_sq = 0.0;
+  double sum_sq = 0.0, max_xy = 0.0, max_yaw = 0.0, sum_yaw_sq = 0.0, sum_z_sq = 0.0;
   int n = 0;
   for (const auto& p : paired_) {
     if (InCarryWindow(p.stamp)) continue;
     sum_sq += p.error_xy * p.error_xy;
+    sum_z_sq += p.error_z * p.error_z;
     max_xy = std::max(max_xy, p.error_xy);
     max_yaw = std::max(max_yaw, std::abs(p.error_yaw));
     sum_yaw_sq += p.error_yaw * p.error_yaw;
@@ -295,16 +311,18 @@ TEST_F(LocalizeTest, ApeWithinBounds) {
   const double rmse = std::sqrt(sum_sq / n);
   const double yaw_rmse_deg = std::sqrt(sum_yaw_sq / n) * kRadToDeg;
   const double max_yaw_deg = max_yaw * kRadToDeg;
+  const double z_rmse = std::sqrt(sum_z_sq / n);
   std::printf(
-      "[ %s ] APE x,y: RMSE %.4f m, max %.4f m over %d poses; yaw RMSE %.3f deg, "
+      "[ %s ] APE x,y: RMSE %.4f m, max %.4f m over %d poses; z RMSE %.4f m; yaw RMSE %.3f deg, "
       "max %.3f deg\n",
-      c_.scenario.c_str(), rmse, max_xy, n, yaw_rmse_deg, max_yaw_deg);
+      c_.scenario.c_str(), rmse, max_xy, n, z_rmse, yaw_rmse_deg, max_yaw_deg);
   RecordProperty("ape_rmse_m", std::to_string(rmse));
   RecordProperty("ape_max_m", std::to_string(max_xy));
   RecordProperty("yaw_rmse_deg", std::to_string(yaw_rmse_deg));
   RecordProperty("yaw_max_deg", std::to_string(max_yaw_deg));
   EXPECT_LE(rmse, c_.max_ape_rmse) << Where() << "APE x,y RMSE [m]";
   EXPECT_LE(max_xy, c_.max_ape_max) << Where() << "APE x,y max [m]";
+  EXPECT_LE(z_rmse, c_.max_ape_z_rmse) << Where() << "APE z RMSE [m]";
   EXPECT_LE(yaw_rmse_deg, c_.max_yaw_rmse_deg) << Where() << "yaw RMSE [deg]";
   EXPECT_LE(max_yaw_deg, c_.max_yaw_deg) << Where() << "yaw max [deg]";
 }
@@ -322,18 +340,53 @@ TEST_F(LocalizeTest, NeverAWrongPose) {
     if (InCarryWindow(p.stamp)) continue;
     ++checked;
     if (p.error_xy > c_.max_wrong_distance ||
-        std::abs(p.error_yaw) * kRadToDeg > c_.max_wrong_yaw_deg) {
+        std::abs(p.error_yaw) * kRadToDeg > c_.max_wrong_yaw_deg ||
+        std::abs(p.error_z) > c_.max_wrong_z) {
       ++wrong;
       if (!worst || p.error_xy > worst->error_xy) worst = &p;
     }
   }
-  std::printf("[ %s ] %d pose_bim checked for a wrong pose (> %.2f m or > %.1f deg): %d wrong\n",
-              c_.scenario.c_str(), checked, c_.max_wrong_distance, c_.max_wrong_yaw_deg, wrong);
+  std::printf(
+      "[ %s ] %d pose_bim checked for a wrong pose (> %.2f m or > %.1f deg, or > %.2f m in z): "
+      "%d wrong\n",
+      c_.scenario.c_str(), checked, c_.max_wrong_distance, c_.max_wrong_yaw_deg, c_.max_wrong_z,
+      wrong);
   EXPECT_EQ(wrong, 0) << Where() << wrong << " of " << checked
                       << " pose_bim are wrong; the worst at t = "
                       << (worst ? worst->stamp - bag_start_ : 0.0)
                       << " s: " << (worst ? worst->error_xy : 0.0) << " m, "
-                      << (worst ? worst->error_yaw * kRadToDeg : 0.0) << " deg off";
+                      << (worst ? worst->error_yaw * kRadToDeg : 0.0) << " deg, "
+                      << (worst ? worst->error_z : 0.0) << " m in z off";
+}
+
+// Issue 22: with the whole building loaded, a UNIQUE match names the storey walked, never
+// another; on floors of one plan the doubt about the storey is said (competing_storey_ids).
+TEST_F(LocalizeTest, NeverAWrongStorey) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (c_.true_storey_id < 0) GTEST_SKIP() << Where() << "the localizer was given the storey";
+  ASSERT_FALSE(matches_.empty()) << Where() << "no graph_match";
+  int unique = 0, wrong = 0, doubting = 0;
+  for (const auto& m : matches_) {
+    if (m.status == is_graphs::GraphMatch::UNIQUE) {
+      ++unique;
+      if (m.storey_id != c_.true_storey_id) ++wrong;
+    }
+    if (m.status == is_graphs::GraphMatch::AMBIGUOUS && !m.competing_storey_ids.empty() &&
+        (m.storey_id == c_.true_storey_id ||
+         std::count(m.competing_storey_ids.begin(), m.competing_storey_ids.end(),
+                    c_.true_storey_id) > 0))
+      ++doubting;
+  }
+  std::printf(
+      "[ %s ] %zu graph_match: %d UNIQUE, %d of them on another storey than %d; %d AMBIGUOUS "
+      "about the storey\n",
+      c_.scenario.c_str(), matches_.size(), unique, wrong, c_.true_storey_id, doubting);
+  EXPECT_EQ(wrong, 0) << Where() << wrong << " UNIQUE matches on another storey";
+  if (c_.storey_in_doubt) {
+    EXPECT_GT(doubting, 0) << Where()
+                           << "floors of one plan, but no AMBIGUOUS match names the competing "
+                              "storeys (with the true one among them)";
+  }
 }
 
 TEST_F(LocalizeTest, KidnapIsDetected) {

@@ -37,7 +37,8 @@ struct SurfaceDeviation {
 struct HypothesisSummary {
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};
   double score{0.0};
-  int rooms{0};  // matched S-rooms
+  int rooms{0};    // matched S-rooms
+  int storey{-1};  // its A-Graph storey id (a storey of the same plan is another hypothesis)
 };
 
 /// The matcher's answer for one S-Graph revision. For AMBIGUOUS the pairs and bim_T_map are
@@ -59,9 +60,17 @@ struct GraphMatch {
   double score{0.0};       // global affinity of the best hypothesis
   unsigned hypotheses{0};  // hypotheses in the best score cluster (1 when UNIQUE)
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};  // rotation about z + translation
+  // The best hypothesis's A-Graph storey id (-1 with no hypothesis). With the whole building
+  // loaded this is the storey identified; alternatives on other storeys are other hypotheses.
+  int storey{-1};
   std::vector<HypothesisSummary> alternatives;  // the other hypotheses of the best cluster
+  std::vector<int> competing_storeys;           // CompetingStoreys(*this), set by the matcher
   std::vector<std::string> warnings;            // bad input found in either graph
 };
+
+/// The storeys of `match`'s competing hypotheses other than its own, sorted, distinct: not empty
+/// when the match is in doubt about the storey (floors of one plan).
+std::vector<int> CompetingStoreys(const GraphMatch& match);
 
 }  // namespace matching
 }  // namespace is_graphs

@@ -41,6 +41,7 @@ struct PipelineEvent {
   std::string kind;  // "match", "localized", "updated", "rejected", "lost"
   matching::MatchStatus status{matching::MatchStatus::kNone};
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};
+  int storey{-1};  // a match's A-Graph storey id
   std::string message;
 };
 

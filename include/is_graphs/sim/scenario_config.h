@@ -168,6 +168,9 @@ struct ScenarioConfig {
   std::string building;     // IFC or .agraph.json, resolved against base_dir
   std::string base_dir;     // the repository root (relative `building` paths start here)
   std::string storey{"0"};  // storey name or index
+  // What the localizer is told (evaluation, rostests, make demo/report): a storey name or index,
+  // or "" for the whole building (the storey to be identified). Unset: `storey`.
+  std::optional<std::string> localizer_storey;
   std::uint64_t seed{1};
   double duration{0.0};       // s; 0 = until the route ends (+ the final pause)
   double start_time{1000.0};  // s, ROS time of the first message

@@ -1,5 +1,7 @@
 #include "is_graphs/matching/graph_match.h"
 
+#include <algorithm>
+
 namespace is_graphs {
 namespace matching {
 
@@ -13,6 +15,15 @@ const char* ToString(MatchStatus status) {
       return "UNIQUE";
   }
   return "?";
+}
+
+std::vector<int> CompetingStoreys(const GraphMatch& match) {
+  std::vector<int> out;
+  for (const auto& a : match.alternatives)
+    if (a.storey >= 0 && a.storey != match.storey) out.push_back(a.storey);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 }  // namespace matching

@@ -213,6 +213,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     stats_.proposals = proposed.candidates;
     if (proposed.status == MatchStatus::kUnique) {
       FillFromProposal(proposed, hypotheses, s_rooms, evidence, &out);
+      out.competing_storeys = CompetingStoreys(out);
       stats_.milliseconds =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       return out;
@@ -224,8 +225,9 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
       if (proposed.scored) {
         out.score = proposed.best.score;
         out.bim_T_map = proposed.best.pose.ToIsometry();
+        out.storey = proposed.best.storey;
         for (const auto& c : proposed.competitors)
-          out.alternatives.push_back({c.pose.ToIsometry(), c.score, 0});
+          out.alternatives.push_back({c.pose.ToIsometry(), c.score, 0, c.storey});
       }
     }
   }
@@ -237,16 +239,20 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     out.score = best.score;
     out.hypotheses = static_cast<unsigned>(1 + decision.competitors.size() + (doubt ? 1 : 0));
     out.bim_T_map = best.pose.ToIsometry();
+    out.storey = best.storey;
     out.room_pairs = RoomPairs(best, s_rooms);
     out.surface_pairs = SurfacePairs(best, s_rooms);
     out.deviations = Deviations(best, s_rooms);
     out.doorway_pairs =
         doorways_.Pairs(evidence.doors, best.pose, best.storey, PairedRooms(best, s_rooms));
     for (int k : decision.competitors)
+      out.alternatives.push_back({hypotheses[k].pose.ToIsometry(), hypotheses[k].score,
+                                  hypotheses[k].rooms, hypotheses[k].storey});
+    if (doubt)
       out.alternatives.push_back(
-          {hypotheses[k].pose.ToIsometry(), hypotheses[k].score, hypotheses[k].rooms});
-    if (doubt) out.alternatives.push_back({doubt->pose.ToIsometry(), doubt->score, doubt->rooms});
+          {doubt->pose.ToIsometry(), doubt->score, doubt->rooms, doubt->storey});
   }
+  out.competing_storeys = CompetingStoreys(out);
   stats_.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -119,6 +119,7 @@ void GraphMatcher::FillFromProposal(const ProposalDecision& proposed,
   out->score = best.score;
   out->hypotheses = 1;
   out->bim_T_map = best.pose.ToIsometry();
+  out->storey = best.storey;
   last_best_ = best.pose;
   std::vector<Eigen::Vector2d> points;
   for (const auto& w : proposed.walls) points.push_back(0.5 * (w.a + w.b));
@@ -158,7 +159,7 @@ void GraphMatcher::FillFromProposal(const ProposalDecision& proposed,
   out->doorway_pairs = doorways_.Pairs(evidence.doors, best.pose, best.storey,
                                        rooms ? PairedRooms(*rooms, s_rooms) : std::map<int, int>());
   for (const auto& c : proposed.competitors)
-    out->alternatives.push_back({c.pose.ToIsometry(), c.score, 0});
+    out->alternatives.push_back({c.pose.ToIsometry(), c.score, 0, c.storey});
 }
 
 }  // namespace matching

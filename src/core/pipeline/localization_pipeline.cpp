@@ -86,9 +86,14 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   e.kind = "match";
   e.status = match.status;
   e.bim_T_map = match.bim_T_map;
+  e.storey = match.storey;
   e.message = std::to_string(match.room_pairs.size()) + " room pairs, " +
               std::to_string(match.hypotheses) + " hypotheses, score " +
               std::to_string(match.score);
+  if (!match.competing_storeys.empty()) {
+    e.message += ", also fits storey";
+    for (int s : match.competing_storeys) e.message += " " + std::to_string(s);
+  }
   if (events_.empty() || events_.back().kind != "match" || events_.back().status != match.status)
     events_.push_back(e);
   if (match.status == matching::MatchStatus::kUnique) unique_matches_.push_back(e);

@@ -126,13 +126,18 @@ void ParseOdometry(const YAML::Node& n, OdometryConfig* o) {
 
 ScenarioConfig ParseRoot(const YAML::Node& root) {
   CheckMap(root, "",
-           {"name", "description", "building", "storey", "seed", "duration", "start_time",
-            "trajectory", "kidnap", "sensor", "gait", "odometry", "scene"});
+           {"name", "description", "building", "storey", "localizer_storey", "seed", "duration",
+            "start_time", "trajectory", "kidnap", "sensor", "gait", "odometry", "scene"});
   ScenarioConfig c;
   Get(root, "", "name", &c.name);
   if (!root["building"]) Fail("building", "missing (path of an .ifc or .agraph.json file)");
   Get(root, "", "building", &c.building);
   Get(root, "", "storey", &c.storey);
+  if (root["localizer_storey"]) {
+    std::string s;
+    Get(root, "", "localizer_storey", &s);
+    c.localizer_storey = s;
+  }
   if (root["seed"]) {
     c.seed = As<std::uint64_t>(root["seed"], "seed", "a non-negative integer");
   }

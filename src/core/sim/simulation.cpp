@@ -168,6 +168,10 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
   const Result<int> storey = agraph::FindStorey(sim->graph, config.storey);
   if (!storey.ok()) return R::Error("storey: " + storey.error());
   sim->storey = storey.value();
+  if (config.localizer_storey && !config.localizer_storey->empty()) {
+    const Result<int> told = agraph::FindStorey(sim->graph, *config.localizer_storey);
+    if (!told.ok()) return R::Error("localizer_storey: " + told.error());
+  }
   sim->log.push_back("building " + sim->graph.building + ": " +
                      std::to_string(mesh.value().triangles.size()) + " triangles, storey " +
                      std::to_string(sim->storey) + " '" + sim->graph.storeys[sim->storey].name +

@@ -18,6 +18,7 @@
 #include "is_graphs/matching/graph_matcher.h"
 #include "is_graphs/matching/room_descriptor.h"
 #include "is_graphs/matching/surface_evidence.h"
+#include "is_graphs/pipeline/evaluation.h"
 #include "is_graphs/sgraph/evaluation.h"
 
 namespace is_graphs {
@@ -31,8 +32,12 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
   matching::Pose2 true_pose;
   true_pose.yaw = xi.z();
   true_pose.t = xi.head<2>();
-  std::printf("explain: true B_x_M (%.2f, %.2f, %.1f deg) from %d keyframes\n", xi.x(), xi.y(),
-              xi.z() * 180 / M_PI, traj.keyframes);
+  // The storey walked (from the truth's height): rooms are looked up on it, hypotheses on
+  // another storey are said to be.
+  const int true_storey =
+      truth.empty() ? -1 : pipeline::StoreyAtHeight(building, truth.back().pose.translation().z());
+  std::printf("explain: true B_x_M (%.2f, %.2f, %.1f deg) from %d keyframes, storey %d\n", xi.x(),
+              xi.y(), xi.z() * 180 / M_PI, traj.keyframes, true_storey);
   const auto a_rooms = matching::DescribeARooms(building);
   const auto s_rooms = matching::DescribeSRooms(graph);
   auto name = [&](int a_index) {
@@ -44,6 +49,7 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
     int inside = -1;
     double best = 1e9;
     for (size_t j = 0; j < a_rooms.size(); ++j) {
+      if (true_storey >= 0 && a_rooms[j].storey != true_storey) continue;
       const double dist = matching::SignedDistanceToPolygon(a_rooms[j].polygon, c);
       if (dist < best) best = dist, inside = static_cast<int>(j);
     }
@@ -84,23 +90,24 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
   matching::GraphMatcher matcher(config);
   matcher.SetAGraph(building);
   const matching::GraphMatch m = matcher.Match(graph);
-  auto print = [&](const char* what, const Eigen::Isometry3d& pose, double score, int rooms) {
+  auto print = [&](const char* what, const Eigen::Isometry3d& pose, double score, int rooms,
+                   int storey) {
     const Eigen::Vector3d h = geometry::ToXYYaw(pose);
-    const double off = (pose.translation() - traj.bim_T_map_gravity.translation()).norm();
+    const double off = (h.head<2>() - xi.head<2>()).norm();
     std::printf(
-        "  %s B_x_M (%.2f, %.2f, %.1f deg), score %.3f, %d room pairs; %.2f m, %.1f deg "
-        "from the truth\n",
-        what, h.x(), h.y(), h.z() * 180 / M_PI, score, rooms, off,
+        "  %s B_x_M (%.2f, %.2f, %.1f deg) storey %d%s, score %.3f, %d room pairs; %.2f m, "
+        "%.1f deg from the truth\n",
+        what, h.x(), h.y(), h.z() * 180 / M_PI, storey,
+        storey != true_storey && true_storey >= 0 ? " (WRONG storey)" : "", score, rooms, off,
         std::abs(geometry::NormalizeAngle(h.z() - xi.z())) * 180 / M_PI);
   };
   std::printf("match of this S-Graph: %s\n", matching::ToString(m.status));
   // Which wall planes the BIM explains under a motion (SurfaceEvidence: share of each extent).
   const auto walls = matching::WallSegments(graph, config);
   const matching::SurfaceEvidence evidence(building, config);
-  auto shares = [&](const Eigen::Isometry3d& pose) {
+  auto shares = [&](const Eigen::Isometry3d& pose, int storey) {
     const Eigen::Vector3d h = geometry::ToXYYaw(pose);
     const matching::Pose2 p{h.z(), h.head<2>()};
-    const int storey = building.surfaces.empty() ? 0 : building.surfaces.front().storey;
     std::printf("    wall planes on BIM surfaces:");
     for (const auto& w : walls) std::printf(" %d:%.2f", w.id, evidence.Share(w, p, storey));
     std::printf("\n");
@@ -110,8 +117,10 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
     const Eigen::Vector2d at = true_pose.Apply(d.position.head<2>());
     const agraph::Doorway* nearest = nullptr;
     for (const auto& a : building.doorways)
-      if (!nearest ||
-          (a.position.head<2>() - at).norm() < (nearest->position.head<2>() - at).norm())
+      if (true_storey >= 0 && a.storey != true_storey) {
+        continue;
+      } else if (!nearest ||
+                 (a.position.head<2>() - at).norm() < (nearest->position.head<2>() - at).norm())
         nearest = &a;
     std::printf("S-doorway %d (width %.2f m, %zu rooms) in B (%.2f, %.2f)", d.id, d.width,
                 d.rooms.size(), at.x(), at.y());
@@ -123,12 +132,12 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
     std::printf("\n");
   }
   if (m.status != matching::MatchStatus::kNone) {
-    print("best      ", m.bim_T_map, m.score, static_cast<int>(m.room_pairs.size()));
-    shares(m.bim_T_map);
+    print("best      ", m.bim_T_map, m.score, static_cast<int>(m.room_pairs.size()), m.storey);
+    shares(m.bim_T_map, m.storey);
   }
   for (const auto& alt : m.alternatives) {
-    print("competitor", alt.bim_T_map, alt.score, alt.rooms);
-    shares(alt.bim_T_map);
+    print("competitor", alt.bim_T_map, alt.score, alt.rooms, alt.storey);
+    shares(alt.bim_T_map, alt.storey);
   }
   if (!std::getenv("IS_GRAPHS_EXPLAIN_PLANES")) return;
   for (const auto& p : graph.planes) {

@@ -25,9 +25,12 @@ inline nlohmann::json XYYawDeg(const Eigen::Isometry3d& t) {
 
 /// Classifies each UNIQUE match when it is made: its B_x_M against the true one of the S-Graph
 /// revision it matched (the keyframes aligned to the ground truth received so far, in x, y and
-/// yaw: sgraph::EvaluateTrajectory), wrong when off by > 0.5 m on the map or > 5 deg.
+/// yaw: sgraph::EvaluateTrajectory), wrong when off by > 0.5 m on the map or > 5 deg, or on
+/// another storey than the one the robot stands on (from the truth's height).
 class MatchAudit {
  public:
+  explicit MatchAudit(const agraph::AGraph& building) : building_(building) {}
+
   /// Call after each scan: audits the UNIQUE matches made since the last call.
   void Update(const pipeline::LocalizationPipeline& localization,
               const std::vector<sgraph::StampedPose>& truth, double first_stamp) {
@@ -40,8 +43,13 @@ class MatchAudit {
     for (; seen_ < matches.size(); ++seen_) {
       const auto& m = matches[seen_];
       const auto e = pipeline::CompareTransforms(m.bim_T_map, traj.bim_T_map_gravity, keyframes);
-      const bool wrong = pipeline::IsWrongMatch(e);
+      const int true_storey =
+          truth.empty() ? -1
+                        : pipeline::StoreyAtHeight(building_, truth.back().pose.translation().z());
+      const bool wrong_storey = m.storey >= 0 && true_storey >= 0 && m.storey != true_storey;
+      const bool wrong = pipeline::IsWrongMatch(e) || wrong_storey;
       wrong_ += wrong;
+      wrong_storeys_ += wrong_storey;
       json_.push_back({{"t", m.stamp - first_stamp},
                        {"revision", m.revision},
                        {"bim_x_map", XYYawDeg(m.bim_T_map)},
@@ -49,15 +57,21 @@ class MatchAudit {
                        {"keyframes_with_truth", traj.keyframes},
                        {"xy_error_m", e.xy_m},
                        {"yaw_error_deg", e.yaw_deg},
+                       {"storey", m.storey},
+                       {"true_storey", true_storey},
+                       {"wrong_storey", wrong_storey},
                        {"wrong", wrong}});
     }
   }
   int wrong() const { return wrong_; }
+  int wrong_storeys() const { return wrong_storeys_; }
   const nlohmann::json& json() const { return json_; }
 
  private:
+  const agraph::AGraph& building_;
   size_t seen_{0};
   int wrong_{0};
+  int wrong_storeys_{0};
   nlohmann::json json_ = nlohmann::json::array();
 };
 

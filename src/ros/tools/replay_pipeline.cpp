@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
   Eigen::Vector3d last_position = Eigen::Vector3d::Constant(std::nan(""));
   int poses = 0;
   std::vector<sgraph::StampedPose> truths;
-  bag_replay::MatchAudit audit;
+  bag_replay::MatchAudit audit(building);
   bool ever_merged = false;
   for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(bag_replay::SensorTopics()))) {
     const double t = m.getTime().toSec();
@@ -217,19 +217,26 @@ int main(int argc, char** argv) {
                       {"kind", e.kind},
                       {"status", matching::ToString(e.status)},
                       {"bim_x_map", {xi.x(), xi.y(), xi.z() * 180.0 / M_PI}},
+                      {"storey", e.storey},
                       {"message", e.message}});
-    std::printf("%7.1f s rev %4u %-9s %-9s B_x_M (%.2f, %.2f, %.1f deg) %s\n", e.stamp - first,
+    std::string storey;
+    for (const auto& s : building.storeys)
+      if (e.kind == "match" && s.id == e.storey) storey = " storey '" + s.name + "'";
+    std::printf("%7.1f s rev %4u %-9s %-9s B_x_M (%.2f, %.2f, %.1f deg) %s%s\n", e.stamp - first,
                 e.revision, e.kind.c_str(), e.kind == "match" ? matching::ToString(e.status) : "",
-                xi.x(), xi.y(), xi.z() * 180.0 / M_PI, e.message.c_str());
+                xi.x(), xi.y(), xi.z() * 180.0 / M_PI, e.message.c_str(), storey.c_str());
   }
   out["events"] = events;
   out["unique_matches"] = audit.json();
   out["wrong_matches"] = audit.wrong();
+  out["wrong_storey_matches"] = audit.wrong_storeys();
   out["localized_at_end"] = localization.localized();
   out["final_bim_x_map"] = bag_replay::XYYawDeg(localization.bim_T_map());
   out["map_cloud_error"] = bag_replay::MapCloudError(localization, building, ever_merged);
-  std::printf("UNIQUE matches %zu, wrong (> 0.5 m or 5 deg from the truth) %d\n",
-              audit.json().size(), audit.wrong());
+  std::printf(
+      "UNIQUE matches %zu, wrong (> 0.5 m or 5 deg from the truth, or another storey) %d, of "
+      "them on another storey %d\n",
+      audit.json().size(), audit.wrong(), audit.wrong_storeys());
   if (const auto& c = out["map_cloud_error"]; !c.is_null())
     std::printf("map cloud vs BIM wall-surfaces: RMSE %.3f m, median %.3f m (%d of %d points)\n",
                 c["rmse_m"].get<double>(), c["median_m"].get<double>(), c["used"].get<int>(),
