@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "is_graphs/sim/scenario_config.h"
+#include "is_graphs/sim/terrain.h"
 #include "is_graphs/sim/trajectory.h"
 
 namespace is_graphs {
@@ -26,19 +27,24 @@ class GaitModel {
   GaitConfig config_;
 };
 
-/// base_link in bim at time t: the planar trajectory at floor height + standing height, with
-/// the gait sway on top. A kidnapped robot has more than one leg: from each carry's time on it
-/// walks that carry's trajectory (whose t = 0 is the carry's time).
+/// base_link in bim at time t: the planar trajectory at the terrain's height under it (the
+/// floor, or a stair flight's incline, with its pitch) + standing height, with the gait sway on
+/// top. A kidnapped robot has more than one leg: from each carry's time on it walks that carry's
+/// trajectory (whose t = 0 is the carry's time).
 class RobotMotion {
  public:
-  RobotMotion(Trajectory trajectory, const GaitConfig& gait, double floor_z)
+  RobotMotion(Trajectory trajectory, const GaitConfig& gait, double floor_z, TerrainProfile terrain)
       : gait_(gait), floor_z_(floor_z) {
-    legs_.push_back({0.0, std::move(trajectory)});
+    legs_.push_back({0.0, std::move(trajectory), std::move(terrain)});
   }
+  RobotMotion(Trajectory trajectory, const GaitConfig& gait, double floor_z)
+      : RobotMotion(std::move(trajectory), gait, floor_z, TerrainProfile::Flat(floor_z)) {}
 
-  /// From `time` on (> the last leg's start), the robot walks `next`: it is carried there
-  /// instantly.
-  void Carry(double time, Trajectory next) { legs_.push_back({time, std::move(next)}); }
+  /// From `time` on (> the last leg's start), the robot walks `next` on the start's floor: it is
+  /// carried there instantly.
+  void Carry(double time, Trajectory next) {
+    legs_.push_back({time, std::move(next), TerrainProfile::Flat(floor_z_)});
+  }
 
   Eigen::Isometry3d BasePose(double t) const;
   /// The leg walked at time t: 0 before the first carry, 1 after it, ...
@@ -55,6 +61,7 @@ class RobotMotion {
   struct Leg {
     double start;
     Trajectory trajectory;
+    TerrainProfile terrain;
   };
   std::vector<Leg> legs_;
   GaitModel gait_;

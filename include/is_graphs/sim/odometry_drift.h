@@ -22,9 +22,10 @@ struct OdometrySample {
 /// Drifting leg odometry from the true motion. The `odom` frame starts on the floor under the
 /// start pose, heading along it. Each step integrates the true planar body-frame increment with
 /// a scale error, a yaw bias per metre and per second, and random walks (per √m walked) in
-/// translation and yaw; z, roll and pitch are kept true (an IMU and the leg kinematics observe
-/// them directly). Deterministic given the seed; call Step at increasing times. A carry (see
-/// Carried) is not seen: the odometry holds its pose across the jump of the truth.
+/// translation and yaw; roll and pitch are kept true (the IMU observes them), z too unless
+/// `z_scale_error` scales each change of height (stairs). Deterministic given the seed; call Step
+/// at increasing times. A carry (see Carried) is not seen: the odometry holds its pose across the
+/// jump of the truth.
 class OdometryDrift {
  public:
   OdometryDrift(const OdometryConfig& config, std::uint64_t seed, double floor_z);
@@ -50,6 +51,8 @@ class OdometryDrift {
   Eigen::Vector3d odom_{Eigen::Vector3d::Zero()};       // planar x, y, yaw in odom
   Eigen::Isometry3d bim_T_odom_{Eigen::Isometry3d::Identity()};
   double distance_{0.0};
+  double odom_height_{0.0};  // z in odom
+  double last_z_{0.0};       // true z of the last step
   double variance_xy_{0.0};
   double variance_yaw_{0.0};
 };

@@ -85,6 +85,12 @@ struct TrajectoryConfig {
   double pause{1.0};                      // s standing still at the start and at each waypoint
   double doorway_clearance{0.8};          // m: the approach points are this far from the wall face
   bool loop{false};                       // repeat the route back and forth until `duration`
+  // Stairs (issue 22): the body's height and pitch follow the ground under the path (stair
+  // flights, landings, the next storey's floor; sim/terrain.h) instead of the start's floor,
+  // and walks that climb or descend are walked at `stairs_speed`. Routes across storeys are
+  // given as waypoints along the stair's walking line.
+  bool follow_terrain{false};
+  double stairs_speed{0.3};  // m/s
   std::string Validate() const;
 };
 
@@ -95,6 +101,7 @@ struct OdometryConfig {
   double yaw_bias_per_s{0.0};           // rad per second
   double translation_random_walk{0.0};  // m / √m walked (per axis)
   double yaw_random_walk{0.0};          // rad / √m walked
+  double z_scale_error{0.0};            // height climbed × (1 + z_scale_error) (stairs)
   std::string Validate() const;
 };
 

@@ -74,6 +74,9 @@ std::optional<double> FloorHeightAt(const geometry::TriangleMesh& mesh, const Ei
 /// heights along the body's centre line and sides), else a description of the blocking point.
 std::string CheckWalkable(const EmbreeScene& scene, const Eigen::Vector2d& a,
                           const Eigen::Vector2d& b, double floor_z);
+/// The same on an incline: from `a` at floor height `floor_a` to `b` at `floor_b` (stairs).
+std::string CheckWalkable(const EmbreeScene& scene, const Eigen::Vector2d& a,
+                          const Eigen::Vector2d& b, double floor_a, double floor_b);
 
 }  // namespace sim
 }  // namespace is_graphs

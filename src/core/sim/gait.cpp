@@ -34,13 +34,15 @@ Eigen::Isometry3d RobotMotion::BasePose(double t) const {
   const Leg& leg = legs_[LegAt(t)];
   const PlanarState state = leg.trajectory.StateAt(t - leg.start);
   const Eigen::Vector3d sway = gait_.Sway(t, gait_.Activity(state));
+  const double floor = leg.terrain.BodyFloor(state.distance);
+  const double incline = leg.terrain.BodyPitch(state.distance);
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = (Eigen::AngleAxisd(state.pose.z(), Eigen::Vector3d::UnitZ()) *
-                   Eigen::AngleAxisd(sway.y(), Eigen::Vector3d::UnitY()) *
+                   Eigen::AngleAxisd(incline + sway.y(), Eigen::Vector3d::UnitY()) *
                    Eigen::AngleAxisd(sway.x(), Eigen::Vector3d::UnitX()))
                       .toRotationMatrix();
   pose.translation() = Eigen::Vector3d(state.pose.x(), state.pose.y(),
-                                       floor_z_ + gait_.config().standing_height + sway.z());
+                                       floor + gait_.config().standing_height + sway.z());
   return pose;
 }
 

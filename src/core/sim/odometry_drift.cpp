@@ -22,6 +22,7 @@ OdometrySample OdometryDrift::Step(double t, const Eigen::Isometry3d& bim_T_base
   const Eigen::Vector3d truth = Planar(bim_T_base);
   OdometrySample sample;
   sample.t = t;
+  const bool first = !started_;
   if (!started_) {
     started_ = true;
     bim_T_odom_ = geometry::IsometryFromXYYaw(truth.x(), truth.y(), truth.z(), floor_z_);
@@ -52,13 +53,19 @@ OdometrySample OdometryDrift::Step(double t, const Eigen::Isometry3d& bim_T_base
       sample.angular_velocity = Eigen::Vector3d(0.0, 0.0, measured_yaw / dt);
     }
   }
+  // Height: leg kinematics over stairs misjudge the rise a little (a scale error on each
+  // change; without one, the height above the start's floor exactly).
+  const double z = bim_T_base.translation().z();
+  odom_height_ = config_.z_scale_error == 0.0 || first
+                     ? z - floor_z_
+                     : odom_height_ + (1.0 + config_.z_scale_error) * (z - last_z_);
+  last_z_ = z;
   last_t_ = t;
   last_true_ = truth;
   // Roll and pitch stay true: the body's orientation relative to its own heading.
   const Eigen::Matrix3d tilt = geometry::RotationZ(-truth.z()) * bim_T_base.linear();
   sample.odom_T_base.linear() = geometry::RotationZ(odom_.z()) * tilt;
-  sample.odom_T_base.translation() =
-      Eigen::Vector3d(odom_.x(), odom_.y(), bim_T_base.translation().z() - floor_z_);
+  sample.odom_T_base.translation() = Eigen::Vector3d(odom_.x(), odom_.y(), odom_height_);
   sample.variance_xy = variance_xy_;
   sample.variance_yaw = variance_yaw_;
   return sample;

@@ -159,7 +159,8 @@ std::string TrajectoryConfig::Validate() const {
        Positive("trajectory.turn_rate_deg", turn_rate_deg, 360.0, "deg/s"),
        Positive("trajectory.turn_acceleration_deg", turn_acceleration_deg, 3600.0, "deg/s^2"),
        Range("trajectory.pause", pause, 0.0, 600.0, "s"),
-       Range("trajectory.doorway_clearance", doorway_clearance, 0.3, 5.0, "m")});
+       Range("trajectory.doorway_clearance", doorway_clearance, 0.3, 5.0, "m"),
+       Range("trajectory.stairs_speed", stairs_speed, 0.1, 1.2, "m/s")});
 }
 
 std::string KidnapConfig::Validate() const {
@@ -187,7 +188,8 @@ std::string OdometryConfig::Validate() const {
        Range("odometry.yaw_bias_per_m", yaw_bias_per_m, -1.0, 1.0, "rad/m"),
        Range("odometry.yaw_bias_per_s", yaw_bias_per_s, -1.0, 1.0, "rad/s"),
        Range("odometry.translation_random_walk", translation_random_walk, 0.0, 1.0, "m/sqrt(m)"),
-       Range("odometry.yaw_random_walk", yaw_random_walk, 0.0, 1.0, "rad/sqrt(m)")});
+       Range("odometry.yaw_random_walk", yaw_random_walk, 0.0, 1.0, "rad/sqrt(m)"),
+       Range("odometry.z_scale_error", z_scale_error, -0.2, 0.2)});
 }
 
 std::string ScenarioConfig::Validate() const {

@@ -42,7 +42,8 @@ void ParseTrajectory(const YAML::Node& n, TrajectoryConfig* t) {
   const std::string f = "trajectory";
   CheckMap(n, f,
            {"rooms", "waypoints", "start", "speed", "acceleration", "turn_rate_deg",
-            "turn_acceleration_deg", "pause", "doorway_clearance", "loop"});
+            "turn_acceleration_deg", "pause", "doorway_clearance", "loop", "follow_terrain",
+            "stairs_speed"});
   ParseRoute(n, f, &t->rooms, &t->waypoints, &t->start);
   Get(n, f, "speed", &t->speed);
   Get(n, f, "acceleration", &t->acceleration);
@@ -51,6 +52,8 @@ void ParseTrajectory(const YAML::Node& n, TrajectoryConfig* t) {
   Get(n, f, "pause", &t->pause);
   Get(n, f, "doorway_clearance", &t->doorway_clearance);
   Get(n, f, "loop", &t->loop);
+  Get(n, f, "follow_terrain", &t->follow_terrain);
+  Get(n, f, "stairs_speed", &t->stairs_speed);
 }
 
 KidnapConfig ParseKidnap(const YAML::Node& n) {
@@ -115,13 +118,14 @@ void ParseOdometry(const YAML::Node& n, OdometryConfig* o) {
   const std::string f = "odometry";
   CheckMap(n, f,
            {"rate_hz", "scale_error", "yaw_bias_per_m", "yaw_bias_per_s", "translation_random_walk",
-            "yaw_random_walk"});
+            "yaw_random_walk", "z_scale_error"});
   Get(n, f, "rate_hz", &o->rate_hz);
   Get(n, f, "scale_error", &o->scale_error);
   Get(n, f, "yaw_bias_per_m", &o->yaw_bias_per_m);
   Get(n, f, "yaw_bias_per_s", &o->yaw_bias_per_s);
   Get(n, f, "translation_random_walk", &o->translation_random_walk);
   Get(n, f, "yaw_random_walk", &o->yaw_random_walk);
+  Get(n, f, "z_scale_error", &o->z_scale_error);
 }
 
 ScenarioConfig ParseRoot(const YAML::Node& root) {

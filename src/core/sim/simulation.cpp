@@ -1,5 +1,6 @@
 #include "is_graphs/sim/simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -39,6 +40,23 @@ std::string CheckRoute(const EmbreeScene& scene, const Route& route, double floo
   return "";
 }
 
+// "" when every walk of the motion's first leg is walkable in the scene as built at the
+// terrain's height (a stair flight's rays rise with it), else the error.
+std::string CheckWalks(const EmbreeScene& scene, const RobotMotion& motion,
+                       const TerrainProfile& terrain) {
+  for (const Trajectory::Walk& w : motion.trajectory().Walks()) {
+    const double length = (w.to - w.from).norm();
+    const std::string blocked =
+        CheckWalkable(scene, w.from, w.to, terrain.GroundAt(w.distance_begin),
+                      terrain.GroundAt(w.distance_begin + length));
+    if (!blocked.empty()) {
+      return "trajectory: the walk from " + Xy(w.from) + " to " + Xy(w.to) + " is " + blocked +
+             " in the scene as built";
+    }
+  }
+  return "";
+}
+
 std::string Seconds(double s) {
   std::ostringstream out;
   out << s << " s";
@@ -50,12 +68,45 @@ std::string Seconds(double s) {
 std::string BuildMotion(Simulation* sim, double wanted) {
   const ScenarioConfig& c = sim->config;
   const bool kidnapped = c.kidnap && (wanted <= 0.0 || c.kidnap->time < wanted);
-  Result<Trajectory> first = Trajectory::Build(sim->route.start, sim->route.waypoints, c.trajectory,
-                                               kidnapped ? c.kidnap->time : wanted);
+  const double first_duration = kidnapped ? c.kidnap->time : wanted;
+  Result<Trajectory> first =
+      Trajectory::Build(sim->route.start, sim->route.waypoints, c.trajectory, first_duration);
   if (!first.ok()) return first.error();
+  TerrainProfile terrain = TerrainProfile::Flat(sim->floor_z);
+  if (c.trajectory.follow_terrain) {
+    // The ground under the path, then the same path again with the stair flights walked slower
+    // (its path is a prefix of the first: the ground is found again along it).
+    const TerrainConfig tc;
+    Result<TerrainProfile> ground =
+        TerrainProfile::Build(*sim->embree, first.value(), sim->floor_z, tc);
+    if (!ground.ok()) return "trajectory: " + ground.error();
+    const LegSpeed slow = StairLegSpeed(first.value(), ground.value(), tc, c.trajectory.speed,
+                                        c.trajectory.stairs_speed);
+    first = Trajectory::Build(sim->route.start, sim->route.waypoints, c.trajectory, first_duration,
+                              slow);
+    if (!first.ok()) return first.error();
+    ground = TerrainProfile::Build(*sim->embree, first.value(), sim->floor_z, tc);
+    if (!ground.ok()) return "trajectory: " + ground.error();
+    terrain = std::move(ground).value();
+  }
   sim->log.push_back("trajectory: " + std::to_string(first.value().PathLength()) + " m in " +
                      std::to_string(first.value().Duration()) + " s");
-  sim->motion = std::make_unique<RobotMotion>(std::move(first).value(), c.gait, sim->floor_z);
+  if (c.trajectory.follow_terrain) {
+    double lo = sim->floor_z, hi = sim->floor_z;
+    for (double s = 0.0; s <= first.value().PathLength(); s += 0.5) {
+      lo = std::min(lo, terrain.GroundAt(s));
+      hi = std::max(hi, terrain.GroundAt(s));
+    }
+    std::ostringstream out;
+    out.precision(2);
+    out << std::fixed << "terrain: the ground under the path from " << lo << " to " << hi << " m";
+    sim->log.push_back(out.str());
+  }
+  sim->motion =
+      std::make_unique<RobotMotion>(std::move(first).value(), c.gait, sim->floor_z, terrain);
+  if (c.trajectory.follow_terrain) {
+    if (const std::string e = CheckWalks(*sim->embree, *sim->motion, terrain); !e.empty()) return e;
+  }
   if (c.kidnap && !kidnapped) {
     sim->log.push_back("kidnap: at " + Seconds(c.kidnap->time) + ", after the end of the bag (" +
                        Seconds(wanted) + "): not simulated");
@@ -125,20 +176,28 @@ std::optional<double> FloorHeightAt(const geometry::TriangleMesh& mesh, const Ei
 
 std::string CheckWalkable(const EmbreeScene& scene, const Eigen::Vector2d& a,
                           const Eigen::Vector2d& b, double floor_z) {
+  return CheckWalkable(scene, a, b, floor_z, floor_z);
+}
+
+std::string CheckWalkable(const EmbreeScene& scene, const Eigen::Vector2d& a,
+                          const Eigen::Vector2d& b, double floor_a, double floor_b) {
   const Eigen::Vector2d d = b - a;
   const double length = d.norm();
   if (length < 1e-3) return "";
   const Eigen::Vector2d u = d / length;
   const Eigen::Vector2d side(-u.y(), u.x());
+  // Along the incline from a's floor to b's (level when they are equal).
+  const Eigen::Vector3d dir = Eigen::Vector3d(d.x(), d.y(), floor_b - floor_a).normalized();
+  const double length3 = std::hypot(length, floor_b - floor_a);
   for (double height : {0.35, 1.0}) {
     for (double lateral : {-0.2, 0.0, 0.2}) {
       const Eigen::Vector2d o = a + lateral * side;
-      const Ray ray{Eigen::Vector3f(o.x(), o.y(), floor_z + height),
-                    Eigen::Vector3f(u.x(), u.y(), 0.0f), static_cast<float>(length)};
+      const Ray ray{Eigen::Vector3f(o.x(), o.y(), floor_a + height), dir.cast<float>(),
+                    static_cast<float>(length3)};
       const RayHit hit = scene.Intersect(ray);
       if (hit.triangle >= 0) {
-        return "blocked at " + Xy(o + hit.distance * u) + " (" + std::to_string(height) +
-               " m above the floor)";
+        return "blocked at " + Xy(o + hit.distance * dir.head<2>()) + " (" +
+               std::to_string(height) + " m above the floor)";
       }
     }
   }
@@ -206,8 +265,10 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
   if (!embree.ok()) return R::Error(embree.error());
   sim->embree = std::move(embree).value();
 
-  // The routes must be walkable in the scene as built.
-  std::string e = CheckRoute(*sim->embree, sim->route, sim->floor_z, "trajectory");
+  // The routes must be walkable in the scene as built (on stairs: checked on the terrain, below).
+  std::string e = config.trajectory.follow_terrain
+                      ? ""
+                      : CheckRoute(*sim->embree, sim->route, sim->floor_z, "trajectory");
   if (e.empty() && sim->kidnap_route) {
     e = CheckRoute(*sim->embree, *sim->kidnap_route, sim->floor_z, "kidnap");
   }

@@ -38,11 +38,11 @@ void Trajectory::Append(Kind kind, const Eigen::Vector3d& from, double amount, d
                         double accel, double duration) {
   if (duration <= 0.0) return;
   const double t0 = Duration();
-  segments_.push_back({kind, t0, t0 + duration, from, amount, v_max, accel});
+  segments_.push_back({kind, t0, t0 + duration, from, amount, v_max, accel, path_length_});
 }
 
 void Trajectory::AddLeg(Eigen::Vector3d* pose, const PlanarWaypoint& target,
-                        const TrajectoryConfig& c) {
+                        const TrajectoryConfig& c, const LegSpeed& leg_speed) {
   const double turn_rate = c.turn_rate_deg * M_PI / 180.0;
   const double turn_accel = c.turn_acceleration_deg * M_PI / 180.0;
   auto turn_to = [&](double yaw) {
@@ -56,8 +56,11 @@ void Trajectory::AddLeg(Eigen::Vector3d* pose, const PlanarWaypoint& target,
   const double distance = step.norm();
   if (distance > 1e-3) {
     turn_to(std::atan2(step.y(), step.x()));
-    Append(Kind::kWalk, *pose, distance, c.speed, c.acceleration,
-           TrapezoidDuration(distance, c.speed, c.acceleration));
+    const double speed =
+        c.speed *
+        (leg_speed ? std::clamp(leg_speed(pose->head<2>(), target.position), 0.05, 1.0) : 1.0);
+    Append(Kind::kWalk, *pose, distance, speed, c.acceleration,
+           TrapezoidDuration(distance, speed, c.acceleration));
     pose->head<2>() = target.position;
     path_length_ += distance;
   }
@@ -67,21 +70,23 @@ void Trajectory::AddLeg(Eigen::Vector3d* pose, const PlanarWaypoint& target,
 
 Result<Trajectory> Trajectory::Build(const Eigen::Vector3d& start,
                                      const std::vector<PlanarWaypoint>& waypoints,
-                                     const TrajectoryConfig& config, double min_duration) {
+                                     const TrajectoryConfig& config, double min_duration,
+                                     const LegSpeed& leg_speed) {
   const std::string e = config.Validate();
   if (!e.empty()) return Result<Trajectory>::Error(e);
   Trajectory t;
   Eigen::Vector3d pose = start;
   pose.z() = geometry::NormalizeAngle(pose.z());
   t.Append(Kind::kPause, pose, 0.0, 0.0, 1.0, std::max(config.pause, 1e-3));
-  for (const PlanarWaypoint& w : waypoints) t.AddLeg(&pose, w, config);
+  for (const PlanarWaypoint& w : waypoints) t.AddLeg(&pose, w, config, leg_speed);
   if (config.loop && !waypoints.empty() && t.path_length_ > 0.1) {
     // Back and forth: reversed route (ending at the start), then forward again, ...
     std::vector<PlanarWaypoint> back(waypoints.rbegin() + 1, waypoints.rend());
     back.push_back({start.head<2>(), std::nullopt, true});
     bool forward = false;
     while (t.Duration() < min_duration) {
-      for (const PlanarWaypoint& w : forward ? waypoints : back) t.AddLeg(&pose, w, config);
+      for (const PlanarWaypoint& w : forward ? waypoints : back)
+        t.AddLeg(&pose, w, config, leg_speed);
       forward = !forward;
     }
   }
@@ -100,6 +105,7 @@ PlanarState Trajectory::StateAt(double t) const {
   if (it == segments_.end()) --it;
   const Segment& s = *it;
   state.pose = s.from;
+  state.distance = s.distance_begin;
   const double tau = t - s.t_begin;
   double position = 0.0, speed = 0.0;
   switch (s.kind) {
@@ -110,6 +116,7 @@ PlanarState Trajectory::StateAt(double t) const {
       state.pose.x() += position * std::cos(s.from.z());
       state.pose.y() += position * std::sin(s.from.z());
       state.speed = speed;
+      state.distance += position;
       break;
     case Kind::kTurn: {
       const double sign = s.amount < 0.0 ? -1.0 : 1.0;
@@ -120,6 +127,33 @@ PlanarState Trajectory::StateAt(double t) const {
     }
   }
   return state;
+}
+
+std::vector<Trajectory::Walk> Trajectory::Walks() const {
+  std::vector<Walk> out;
+  for (const Segment& s : segments_) {
+    if (s.kind != Kind::kWalk) continue;
+    const Eigen::Vector2d from = s.from.head<2>();
+    const Eigen::Vector2d dir(std::cos(s.from.z()), std::sin(s.from.z()));
+    out.push_back({from, from + s.amount * dir, s.distance_begin});
+  }
+  return out;
+}
+
+Eigen::Vector2d Trajectory::PositionAtDistance(double distance) const {
+  const Segment* last = nullptr;
+  for (const Segment& s : segments_) {  // walks in order of distance_begin
+    if (s.kind != Kind::kWalk) continue;
+    if (distance < s.distance_begin) break;
+    last = &s;
+  }
+  if (!last) {
+    if (segments_.empty()) return Eigen::Vector2d::Zero();
+    return segments_.front().from.head<2>();
+  }
+  const double along = std::clamp(distance - last->distance_begin, 0.0, last->amount);
+  return last->from.head<2>() +
+         along * Eigen::Vector2d(std::cos(last->from.z()), std::sin(last->from.z()));
 }
 
 }  // namespace sim
