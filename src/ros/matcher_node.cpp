@@ -47,6 +47,8 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "doorway_tolerance", c.doorway_tolerance);
   ros_params::Read(pnh, "doorway_width_tolerance", c.doorway_width_tolerance);
   ros_params::Read(pnh, "sight_penalty", c.sight_penalty);
+  ros_params::Read(pnh, "unique_min_wall_share", c.unique_min_wall_share);
+  ros_params::Read(pnh, "unique_min_walls", c.unique_min_walls);
   ros_params::Read(pnh, "sight_viewpoints", c.sight_viewpoints);
   ros_params::Read(pnh, "sight_door_margin", c.sight_door_margin);
   ros_params::Read(pnh, "surface_min_length", c.surface_min_length);

@@ -23,6 +23,7 @@ is_graphs::SGraph ToMsg(const sgraph::SGraph& graph) {
     m.previous_id = static_cast<uint32_t>(std::max(k.previous, 0));
     m.relative_odom = ToPose(k.relative_odom);
     ToArray(k.odom_information, m.odom_information);
+    m.level = k.level;
     msg.keyframes.push_back(m);
   }
   for (const auto& p : graph.planes) {
@@ -95,6 +96,7 @@ sgraph::SGraph FromMsg(const is_graphs::SGraph& msg) {
     k.previous = m.has_previous ? static_cast<int>(m.previous_id) : -1;
     k.relative_odom = FromPose(m.relative_odom);
     k.odom_information = FromArray<6, 6>(m.odom_information);
+    k.level = m.level;
     graph.keyframes.push_back(k);
   }
   for (const auto& m : msg.planes) {

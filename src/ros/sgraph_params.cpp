@@ -85,6 +85,9 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "room_rays", f.room_rays);
   Read(pnh, "room_rectangle_share", f.room_rectangle_share);
   Read(pnh, "room_max_opening", f.room_max_opening);
+  Read(pnh, "level_tolerance", f.levels.tolerance);
+  Read(pnh, "level_min_rise", f.levels.min_rise);
+  Read(pnh, "level_settle", f.levels.settle);
   Read(pnh, "doorway_detect", f.doorways.detect);
   Read(pnh, "doorway_max_step", f.doorways.max_step);
   Read(pnh, "doorway_min_wall_height", f.doorways.min_wall_height);

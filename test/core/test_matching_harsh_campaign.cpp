@@ -149,7 +149,9 @@ TEST(MatchingHarshCampaign, ALoneHypothesisIsDoubtedWhereTheTruthMissedTheCentre
   // and the doubt is tested on its own (as the room pairs alone would have it).
   MatcherConfig pairs_only;
   pairs_only.surface_evidence_weight = 0.0;
-  pairs_only.proposals = false;  // they weigh every wall plane
+  pairs_only.proposals = false;            // they weigh every wall plane
+  pairs_only.unique_min_wall_share = 0.0;  // so does the gate on the walls seen (it alone
+                                           // turns the lone wrong fit AMBIGUOUS: 2026-11-26)
   MatcherConfig strict = pairs_only;
   strict.doubt_centre_tolerance = 0.0;
   GraphMatcher alone(strict), doubting(pairs_only), with_walls;
@@ -165,6 +167,17 @@ TEST(MatchingHarshCampaign, ALoneHypothesisIsDoubtedWhereTheTruthMissedTheCentre
   EXPECT_GE(d.alternatives.size(), 1u);
   const GraphMatch w = with_walls.Match(s.graph);
   EXPECT_TRUE(w.status != MatchStatus::kUnique || testing::MatchIsCorrect(w, s, &why)) << why;
+  // The gate on the walls seen (issue 22) alone: the lone wrong fit explains too little of them.
+  MatcherConfig gated = strict;
+  gated.unique_min_wall_share = MatcherConfig().unique_min_wall_share;
+  GraphMatcher gate(gated);
+  gate.SetAGraph(*buildings[b].second);
+  const GraphMatch g = gate.Match(s.graph);
+  EXPECT_EQ(g.status, MatchStatus::kAmbiguous);
+  bool said = false;
+  for (const auto& warning : g.warnings)
+    said = said || warning.find("fits only") != std::string::npos;
+  EXPECT_TRUE(said) << "the gate names why the fit is not UNIQUE";
 }
 
 // The doubter weighs the walked path only against its own best; a doubt of another motion that

@@ -334,6 +334,66 @@ TEST(Merge, BimToOdomPutsTheNewestKeyframeAtItsHeightUnderATiltedOdometry) {
               1e-3);
 }
 
+// `building` with a second storey 3 m up of the same plan (floors of one plan): copies of its
+// surfaces, walls and rooms with ids after the originals.
+agraph::AGraph StackedTwice(const agraph::AGraph& building) {
+  agraph::AGraph out = building;
+  agraph::Storey up = building.storeys.front();
+  up.id = static_cast<int>(building.storeys.size());
+  up.elevation += 3.0;
+  up.name = "upstairs";
+  out.storeys.push_back(up);
+  const int ns = static_cast<int>(building.surfaces.size());
+  const int nw = static_cast<int>(building.walls.size());
+  const int nr = static_cast<int>(building.rooms.size());
+  for (auto s : building.surfaces) {
+    s.id += ns, s.storey = up.id, s.z_min += 3.0, s.z_max += 3.0;
+    if (s.wall >= 0) s.wall += nw;
+    for (int& r : s.rooms) r += nr;
+    out.surfaces.push_back(s);
+  }
+  for (auto w : building.walls) {
+    w.id += nw, w.storey = up.id;
+    if (w.surface_a >= 0) w.surface_a += ns;
+    if (w.surface_b >= 0) w.surface_b += ns;
+    out.walls.push_back(w);
+  }
+  for (auto r : building.rooms) {
+    r.id += nr, r.storey = up.id, r.z_min += 3.0, r.z_max += 3.0;
+    for (int& x : r.surfaces) x += ns;
+    for (int& x : r.walls) x += nw;
+    r.doorways.clear();
+    out.rooms.push_back(r);
+  }
+  return out;
+}
+
+TEST(Merge, AUniqueMatchOnAnotherStoreyOfOnePlanIsIgnored) {
+  // Merged on the ground floor, the robot still there: the same motion matched on the floor of
+  // the same plan above (issue 22) must not move the pose to it.
+  const agraph::AGraph one = TwoRooms();
+  const agraph::AGraph building = StackedTwice(one);
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.0);
+  SyntheticCase c = MakeCase(one, truth, 0.0);
+  c.match.storey = 0;
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  ASSERT_TRUE(merger.OnMatch(c.match, c.s.graph).merged);
+  matching::GraphMatch upstairs = c.match;
+  upstairs.storey = 1;
+  for (auto& p : upstairs.room_pairs) p.a_id += static_cast<int>(one.rooms.size());
+  for (auto& p : upstairs.surface_pairs) p.a_id += static_cast<int>(one.surfaces.size());
+  const MergeOutput out = merger.OnMatch(upstairs, c.s.graph);
+  EXPECT_TRUE(out.merged) << out.message;
+  EXPECT_NE(out.message.find("ignored"), std::string::npos) << out.message;
+  ExpectRecovered(out, truth, 1e-3, 0.05);
+  EXPECT_NEAR(out.bim_T_map.translation().z(), 0.0, 1e-9) << "still on the ground floor";
+  // The same match on the ground floor is taken as usual.
+  const MergeOutput again = merger.OnMatch(c.match, c.s.graph);
+  EXPECT_EQ(again.event, MergeEvent::kUpdated) << again.message;
+  EXPECT_EQ(again.message.find("ignored"), std::string::npos) << again.message;
+}
+
 TEST(RecentEvidence, WallsSeenNowMustLieOnTheBim) {
   const agraph::AGraph building = TwoRooms();
   const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(2.0, 1.0, 30.0 * kDeg, 0.0);

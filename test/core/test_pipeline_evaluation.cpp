@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/pipeline/evaluation.h"
 
@@ -104,12 +105,12 @@ TEST(PipelineEvaluation, StoreyAtHeightIsTheHighestFloorBelow) {
     s.elevation = elevation;
     building.storeys.push_back(s);
   }
-  EXPECT_EQ(StoreyAtHeight(building, 0.5), 0);
-  EXPECT_EQ(StoreyAtHeight(building, -2.5), 1);
-  EXPECT_EQ(StoreyAtHeight(building, 4.05), 2);
-  EXPECT_EQ(StoreyAtHeight(building, 3.52), 2);  // within 5 cm below its floor: rounding
-  EXPECT_EQ(StoreyAtHeight(building, 3.40), 0);
-  EXPECT_EQ(StoreyAtHeight(building, -4.0), -1);
+  EXPECT_EQ(agraph::StoreyAtHeight(building, 0.5), 0);
+  EXPECT_EQ(agraph::StoreyAtHeight(building, -2.5), 1);
+  EXPECT_EQ(agraph::StoreyAtHeight(building, 4.05), 2);
+  EXPECT_EQ(agraph::StoreyAtHeight(building, 3.52), 2);  // within 5 cm below its floor: rounding
+  EXPECT_EQ(agraph::StoreyAtHeight(building, 3.40), 0);
+  EXPECT_EQ(agraph::StoreyAtHeight(building, -4.0), -1);
 }
 
 }  // namespace

@@ -13,6 +13,11 @@ namespace agraph {
 /// numeric index. The error lists the storeys there are.
 Result<int> FindStorey(const AGraph& graph, const std::string& storey);
 
+/// The storey (id) a robot whose base is at height `z` in B stands on: the one with the highest
+/// elevation at or below z (+ 5 cm for rounding); -1 when z lies below every storey. A match on
+/// another storey is a wrong match, however well x, y and yaw agree (floors of one plan).
+int StoreyAtHeight(const AGraph& graph, double z);
+
 /// The sub-graph of one storey (by index), with ids re-indexed densely and references to
 /// elements outside the storey dropped: walls of the storey with their surfaces, its rooms and
 /// its doorways (a doorway left without rooms is dropped, with a warning). The result has one

@@ -71,7 +71,9 @@ class GraphMatcher {
   bool HasAGraph() const { return has_agraph_; }
 
   /// Matches one S-Graph revision. Bad input is reported in GraphMatch::warnings and left out;
-  /// nothing usable gives NONE.
+  /// nothing usable gives NONE. An S-Graph over several levels (stairs walked) is matched on
+  /// the level of its newest keyframe: a storey's plan against one storey's; the history is
+  /// forgotten when the level changes.
   GraphMatch Match(const sgraph::SGraph& graph);
   /// Forgets the S-Graph matched so far (it restarted): no reuse, no previous best motion.
   void ForgetHistory() {
@@ -160,6 +162,11 @@ class GraphMatcher {
                   const CandidateIndex& index, const std::vector<int>& order, double affinity_floor,
                   bool* abandoned) const;
 
+  GraphMatch MatchLevel(const sgraph::SGraph& graph);
+  /// A UNIQUE `out` whose motion fits too little of the walls seen becomes AMBIGUOUS
+  /// (unique_min_wall_share).
+  void GateOnWallsSeen(const sgraph::SGraph& graph, GraphMatch* out) const;
+
   MatcherConfig config_;
   bool has_agraph_{false};
   std::string a_sha256_;
@@ -170,6 +177,8 @@ class GraphMatcher {
   std::vector<Corner> a_corners_;
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
+  int level_{0};      // of the S-Graph level matched last
+  int a_storeys_{0};  // storeys in the A-Graph
   MatchStats stats_;
   /// The same matcher with doubt_centre_tolerance (null: no doubt). Owning it makes a
   /// GraphMatcher move-only: one per thread, as said above.

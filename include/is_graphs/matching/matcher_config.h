@@ -39,6 +39,13 @@ struct MatcherConfig {
   // up to sight_penalty (x min(1, length / surface_full_length)); 0: not used.
   double sight_penalty{0.1};
   int sight_viewpoints{12};        // keyframes per plane whose sight lines are checked
+  // A UNIQUE answer must fit the walls seen: at least unique_min_wall_share of their length
+  // (SurfaceEvidence, on its storey) once they add up to unique_min_walls full-length walls;
+  // else AMBIGUOUS. Right UNIQUE answers on the scenario bags fit 0.75-1.0 of them (H3's walls
+  // turned 15 deg: 0.75); a roof storey's hall taken for AC11's entrance hall, 0.42-0.47.
+  // 0: not used.
+  double unique_min_wall_share{0.6};
+  double unique_min_walls{4.0};
   double sight_door_margin{0.15};  // a sight line this far beyond a doorway's half-width is
                                    // through the wall (door_margin is for the walked path)
   // --- proposals from the first scans (CornerProposals; before a room is closed) ---

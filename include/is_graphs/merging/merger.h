@@ -76,6 +76,8 @@ class Merger {
  private:
   MergeOutput SolveAndCheck(const sgraph::SGraph& s_graph, bool starting);
   double HeightOfMap(const sgraph::SGraph& s_graph, double fallback) const;
+  /// The A-Graph storey under the newest keyframe, by its height in B (-1: none).
+  int StoreyWalked(const sgraph::SGraph& s_graph) const;
 
   MergerConfig config_;
   agraph::AGraph a_graph_;

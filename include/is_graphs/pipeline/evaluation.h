@@ -27,11 +27,6 @@ inline bool IsWrongMatch(const TransformError& e, double max_xy_m = 0.5, double 
   return e.xy_m > max_xy_m || e.yaw_deg > max_yaw_deg;
 }
 
-/// The storey a robot whose base is at height `z` in B stands on: the one with the highest
-/// elevation at or below z (+ 5 cm for rounding); -1 when z lies below every storey. A match on
-/// another storey is a wrong match, however well x, y and yaw agree (floors of one plan).
-int StoreyAtHeight(const agraph::AGraph& building, double z);
-
 /// The map cloud against the BIM (the paper's point-cloud RMSE): points in B against the A-Graph
 /// wall-surfaces. A point is used when its orthogonal projection falls on a wall-surface, at
 /// least `edge_margin` inside its extent (away from floor, ceiling and the surface's ends:

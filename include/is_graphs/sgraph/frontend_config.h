@@ -3,6 +3,7 @@
 #include <string>
 
 #include "is_graphs/sgraph/doorway_detection.h"
+#include "is_graphs/sgraph/levels.h"
 
 namespace is_graphs {
 namespace sgraph {
@@ -96,6 +97,8 @@ struct FrontendConfig {
 
   // Doorways where the walked path crosses wall planes (ROS parameters doorway_<field>).
   DoorwayConfig doorways;
+  // Storeys walked: a keyframe's level from its height (ROS parameters level_<field>).
+  LevelConfig levels;
 
   /// Empty when valid, else what is wrong (naming the field).
   std::string Validate() const;

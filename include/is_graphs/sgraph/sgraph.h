@@ -21,6 +21,7 @@ struct Keyframe {
   int previous{-1};                                                // id, -1 for the first keyframe
   Eigen::Isometry3d relative_odom{Eigen::Isometry3d::Identity()};  // previous^-1 * this
   Eigen::Matrix<double, 6, 6> odom_information{Eigen::Matrix<double, 6, 6>::Identity()};
+  int level{0};  // the storey walked (levels.h): 0 until a stair climb reaches another
 };
 
 struct Plane {

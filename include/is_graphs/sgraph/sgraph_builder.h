@@ -119,6 +119,8 @@ class SGraphBuilder {
   void UpdateRooms(int keyframe);
   void UpdateFloor();
   double FloorHeight() const;
+  /// With more than one level walked: a floor per level (id = level) and the rooms on theirs.
+  void SplitFloorsByLevel(SGraph* graph, double ground_floor) const;
   BackendProblem MakeProblem() const;
   /// A doorway's width from the gap in its wall's points around the crossing; 0 if not closed.
   double DoorwayWidthLocked(const Doorway& doorway, const SGraph& graph) const;
@@ -146,6 +148,7 @@ class SGraphBuilder {
   std::vector<BackendRoom> rooms_;
   std::vector<std::vector<int>> room_keyframes_;
   BackendFloor floor_;
+  LevelTracker levels_;         // the storeys walked (keyframe levels)
   double odometry_scale_{1.0};  // the back end's estimate (BackendProblem::odometry_scale)
 };
 

@@ -128,5 +128,15 @@ Result<AGraph> SelectStorey(const AGraph& graph, int storey_index) {
   return Result<AGraph>::Ok(std::move(out));
 }
 
+int StoreyAtHeight(const agraph::AGraph& building, double z) {
+  int best = -1;
+  for (size_t i = 0; i < building.storeys.size(); ++i) {
+    const agraph::Storey& s = building.storeys[i];
+    if (s.elevation > z + 0.05) continue;
+    if (best < 0 || s.elevation > building.storeys[best].elevation) best = static_cast<int>(i);
+  }
+  return best < 0 ? -1 : building.storeys[best].id;
+}
+
 }  // namespace agraph
 }  // namespace is_graphs

@@ -5,8 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <sstream>
 
+#include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/input_checks.h"
+#include "is_graphs/sgraph/levels.h"
 
 namespace is_graphs {
 namespace matching {
@@ -67,6 +70,7 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   doorways_ = DoorwayEvidence(graph, config_);
   a_corners_ = FindCorners(FacingSurfaces(graph), config_.proposal_corner_reach);
   a_sha256_ = graph.source.sha256;
+  a_storeys_ = static_cast<int>(graph.storeys.size());
   has_agraph_ = true;
   cache_.clear();
   last_best_.reset();
@@ -171,6 +175,42 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
 }
 
 GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
+  if (!sgraph::HasLevels(graph)) return MatchLevel(graph);
+  const int level = sgraph::CurrentLevel(graph);
+  if (level != level_) {
+    ForgetHistory();
+    level_ = level;
+  }
+  if (level != 0 && a_storeys_ == 1) {
+    // One storey loaded (the one the robot started on, level 0): the others are not in it.
+    GraphMatch out;
+    out.a_graph_sha256 = a_sha256_;
+    out.s_graph_revision = graph.revision;
+    out.warnings.push_back("the robot walks on another level (" + std::to_string(level) +
+                           ") than the one it started on, and only one storey is loaded: not "
+                           "matching there (load the whole building for runs over stairs)");
+    return out;
+  }
+  return MatchLevel(sgraph::LevelSubgraph(graph, level));
+}
+
+void GraphMatcher::GateOnWallsSeen(const sgraph::SGraph& graph, GraphMatch* out) const {
+  if (out->status != MatchStatus::kUnique || config_.unique_min_wall_share <= 0.0) return;
+  const std::vector<WallSegment> walls = WallSegments(graph, config_);
+  const double bound = surfaces_.Bound(walls);
+  if (bound < config_.unique_min_walls) return;
+  const Eigen::Vector3d xi = geometry::ToXYYaw(out->bim_T_map);
+  const double share = surfaces_.Explained(walls, Pose2{xi.z(), xi.head<2>()}, out->storey) / bound;
+  if (share >= config_.unique_min_wall_share) return;
+  out->status = MatchStatus::kAmbiguous;
+  std::ostringstream why;
+  why.precision(2);
+  why << "the best hypothesis fits only " << share << " of the walls seen (< "
+      << config_.unique_min_wall_share << "): not UNIQUE";
+  out->warnings.push_back(why.str());
+}
+
+GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
   const auto t0 = std::chrono::steady_clock::now();
   stats_ = MatchStats{};
   GraphMatch out;
@@ -214,6 +254,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     if (proposed.status == MatchStatus::kUnique) {
       FillFromProposal(proposed, hypotheses, s_rooms, evidence, &out);
       out.competing_storeys = CompetingStoreys(out);
+      GateOnWallsSeen(graph, &out);
       stats_.milliseconds =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       return out;
@@ -253,6 +294,7 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
           {doubt->pose.ToIsometry(), doubt->score, doubt->rooms, doubt->storey});
   }
   out.competing_storeys = CompetingStoreys(out);
+  GateOnWallsSeen(graph, &out);
   stats_.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;

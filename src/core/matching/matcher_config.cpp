@@ -44,6 +44,8 @@ std::string MatcherConfig::Validate() const {
       {"doorway_tolerance", doorway_tolerance, 0.0, 5.0, true},
       {"doorway_width_tolerance", doorway_width_tolerance, 0.0, 5.0, true},
       {"sight_penalty", sight_penalty, 0.0, 10.0, false},
+      {"unique_min_wall_share", unique_min_wall_share, 0.0, 1.0, false},
+      {"unique_min_walls", unique_min_walls, 0.0, 1e6, false},
       {"sight_viewpoints", static_cast<double>(sight_viewpoints), 1.0, 100.0, false},
       {"sight_door_margin", sight_door_margin, 0.0, 5.0, false},
       {"proposal_corner_reach", proposal_corner_reach, 0.0, 5.0, true},

@@ -1,8 +1,10 @@
 #include "is_graphs/merging/merger.h"
 
+#include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/agraph/agraph_validation.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/merging/recent_evidence.h"
+#include "is_graphs/sgraph/levels.h"
 
 namespace is_graphs {
 namespace merging {
@@ -64,26 +66,40 @@ void Merger::Reset() {
 double Merger::HeightOfMap(const sgraph::SGraph& s_graph, double fallback) const {
   // M's height in B: the storey's floor elevation minus the S-Graph floor's height in M. The
   // storey of the first room pair, else (a match from wall planes alone) of the first surface.
+  // With stairs walked, the S-Graph has a floor per level: the paired element's.
   if (s_graph.floors.empty()) return fallback;
-  int storey = -1;
+  int storey = -1, level = -1;
   double room_floor = 0.0;
   if (!pairs_.rooms.empty()) {
-    const int a_room = pairs_.rooms.begin()->second;
+    const auto [s_room, a_room] = *pairs_.rooms.begin();
     if (a_room < 0 || a_room >= static_cast<int>(a_graph_.rooms.size())) return fallback;
     storey = a_graph_.rooms[a_room].storey;
     room_floor = a_graph_.rooms[a_room].z_min;
+    for (const auto& r : s_graph.rooms)
+      if (r.id == s_room) level = sgraph::LevelOfRoom(s_graph, r);
   } else if (!pairs_.surfaces.empty() && !pairs_.surfaces.begin()->second.empty()) {
     const int a_surface = pairs_.surfaces.begin()->second.front();
     if (a_surface < 0 || a_surface >= static_cast<int>(a_graph_.surfaces.size())) return fallback;
     storey = a_graph_.surfaces[a_surface].storey;
     room_floor = a_graph_.surfaces[a_surface].z_min;
+    level = sgraph::LevelOfPlane(s_graph, pairs_.surfaces.begin()->first);
   } else {
     return fallback;
   }
   const double elevation = storey >= 0 && storey < static_cast<int>(a_graph_.storeys.size())
                                ? a_graph_.storeys[storey].elevation
                                : room_floor;
-  return elevation - s_graph.floors.front().height;
+  const sgraph::Floor* floor = &s_graph.floors.front();
+  for (const auto& f : s_graph.floors)
+    if (f.id == level) floor = &f;
+  return elevation - floor->height;
+}
+
+int Merger::StoreyWalked(const sgraph::SGraph& s_graph) const {
+  const sgraph::Keyframe* k = NewestKeyframe(s_graph);
+  if (!k) return -1;
+  return agraph::StoreyAtHeight(a_graph_,
+                                HeightOfMap(s_graph, match_z_) + k->pose.translation().z());
 }
 
 MergeOutput Merger::OnMatch(const matching::GraphMatch& match, const sgraph::SGraph& s_graph) {
@@ -100,6 +116,18 @@ MergeOutput Merger::OnMatch(const matching::GraphMatch& match, const sgraph::SGr
     return OnSGraph(s_graph);
   }
   const Eigen::Vector3d guess = geometry::ToXYYaw(match.bim_T_map);
+  if (merged_ && match.storey >= 0) {
+    // Floors of one plan: the same x, y and yaw on another storey. The storey the robot walks
+    // on follows from the merge and the height walked (stairs); a match elsewhere is ignored.
+    const int walked = StoreyWalked(s_graph);
+    if (walked >= 0 && walked != match.storey) {
+      MergeOutput kept = OnSGraph(s_graph);
+      kept.message = "UNIQUE match on storey " + std::to_string(match.storey) +
+                     " ignored: the robot walks on storey " + std::to_string(walked) +
+                     " (from the merge and the height walked)";
+      return kept;
+    }
+  }
   if (merged_) {
     const TransformJump jump = CompareTransforms(xi_, guess, NewestKeyframePosition(s_graph));
     if (!TransformsAgree(jump, config_)) {

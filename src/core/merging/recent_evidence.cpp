@@ -6,16 +6,21 @@
 #include <set>
 #include <sstream>
 
+#include "is_graphs/agraph/agraph_queries.h"
+
 namespace is_graphs {
 namespace merging {
 namespace {
 
 constexpr double kExtentMargin = 1.0;  // m beyond a wall-surface's ends
 
+// On the storey walked (-1: any), as the robot's height in B says: a wall seen on the first
+// floor is not supported by the ground floor's.
 bool Supported(const agraph::AGraph& a_graph, const geometry::Plane& plane_b,
-               const Eigen::Vector3d& middle_b, const MergerConfig& config) {
+               const Eigen::Vector3d& middle_b, int storey, const MergerConfig& config) {
   const double cos_gate = std::cos(config.gate_angle_deg * M_PI / 180.0);
   for (const auto& s : a_graph.surfaces) {
+    if (storey >= 0 && s.storey != storey) continue;
     if (s.plane.normal.dot(plane_b.normal) < cos_gate) continue;
     if (std::abs(s.plane.SignedDistance(middle_b)) > config.gate_offset) continue;
     const Eigen::Vector2d t = s.Tangent().head<2>();
@@ -62,7 +67,8 @@ RecentEvidence CheckRecentEvidence(const agraph::AGraph& a_graph, const sgraph::
     Eigen::Vector3d middle_b =
         bim_T_map * Eigen::Vector3d(mid_m.x(), mid_m.y(), map_T_k.translation().z());
     middle_b = in_b.Project(middle_b);
-    if (Supported(a_graph, in_b, middle_b, config)) supported.insert(plane.id);
+    const int storey = agraph::StoreyAtHeight(a_graph, bim_T_k.translation().z());
+    if (Supported(a_graph, in_b, middle_b, storey, config)) supported.insert(plane.id);
   }
   out.planes = static_cast<int>(seen.size());
   out.supported = static_cast<int>(supported.size());

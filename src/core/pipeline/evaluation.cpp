@@ -52,15 +52,6 @@ CloudError CloudAgainstWallSurfaces(const std::vector<Eigen::Vector3f>& points_i
   return out;
 }
 
-int StoreyAtHeight(const agraph::AGraph& building, double z) {
-  int best = -1;
-  for (size_t i = 0; i < building.storeys.size(); ++i) {
-    const agraph::Storey& s = building.storeys[i];
-    if (s.elevation > z + 0.05) continue;
-    if (best < 0 || s.elevation > building.storeys[best].elevation) best = static_cast<int>(i);
-  }
-  return best < 0 ? -1 : building.storeys[best].id;
-}
 
 }  // namespace pipeline
 }  // namespace is_graphs

@@ -91,7 +91,8 @@ std::string FrontendConfig::Validate() const {
   c.Range("room_rectangle_share", room_rectangle_share, 0.5, 1.0);
   c.Positive("room_max_opening", room_max_opening);
   if (!c.error().empty()) return c.error();
-  return doorways.Validate();
+  if (const std::string e = doorways.Validate(); !e.empty()) return e;
+  return levels.Validate();
 }
 
 std::string DoorwayConfig::Validate() const {

@@ -15,7 +15,8 @@ namespace sgraph {
 SGraphBuilder::SGraphBuilder(const FrontendConfig& frontend, const BackendConfig& backend)
     : frontend_(frontend),
       backend_(backend),
-      selector_(frontend.keyframe_distance, frontend.keyframe_angle_deg * M_PI / 180.0) {}
+      selector_(frontend.keyframe_distance, frontend.keyframe_angle_deg * M_PI / 180.0),
+      levels_(frontend.levels) {}
 
 void SGraphBuilder::Reset() {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -42,6 +43,7 @@ void SGraphBuilder::ClearGraphLocked() {
   rooms_.clear();
   room_keyframes_.clear();
   floor_ = BackendFloor();
+  levels_.Reset();
 }
 
 SGraphBuilder::OdometryResult SGraphBuilder::AddOdometry(double stamp,
@@ -209,6 +211,7 @@ void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& 
     step.translation() *= odometry_scale_;
     kf.pose = prev.pose * step;
   }
+  kf.level = levels_.Add(kf.pose.translation().z());
   keyframes_.push_back(kf);
   clouds_.push_back(std::move(cloud));
   result.status = ScanStatus::kKeyframe;

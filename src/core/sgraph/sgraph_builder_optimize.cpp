@@ -100,10 +100,37 @@ SGraph SGraphBuilder::Snapshot() const {
   }
   if (floor_.present) graph.floors.push_back(MakeFloor(graph.rooms, height));
   if (floor_.present && !graph.floors.empty()) graph.floors.back().center.head<2>() = floor_.center;
+  if (levels_.size() > 1) SplitFloorsByLevel(&graph, height);
   graph.doorways = DetectDoorways(graph, frontend_.doorways);
   for (auto& d : graph.doorways)
     if (d.width <= 0.0) d.width = DoorwayWidthLocked(d, graph);
   return graph;
+}
+
+void SGraphBuilder::SplitFloorsByLevel(SGraph* graph, double ground_floor) const {
+  // One floor per level, at the level's height less the robot's standing height on level 0
+  // (the first floor plane's height under its first keyframe): the body stands as high above
+  // every floor. Rooms on the floor of their level.
+  const double standing = levels_.Height(0) - ground_floor;
+  std::vector<std::vector<Room>> by_level(levels_.size());
+  for (auto& room : graph->rooms) {
+    const int level = LevelOfRoom(*graph, room);
+    if (level <= 0 || level >= levels_.size()) {
+      if (level == 0) by_level[0].push_back(room);
+      continue;
+    }
+    room.center.z() = levels_.Height(level) - standing;
+    by_level[level].push_back(room);
+  }
+  const std::vector<Floor> before = graph->floors;
+  graph->floors.clear();
+  for (int level = 0; level < levels_.size(); ++level) {
+    const double height = level == 0 ? ground_floor : levels_.Height(level) - standing;
+    Floor floor = MakeFloor(by_level[level], height);
+    floor.id = level;
+    if (level == 0 && !before.empty()) floor.center.head<2>() = before.back().center.head<2>();
+    graph->floors.push_back(floor);
+  }
 }
 
 double SGraphBuilder::DoorwayWidthLocked(const Doorway& doorway, const SGraph& graph) const {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "is_graphs/agraph/agraph.h"
+#include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/candidate_graph.h"
 #include "is_graphs/matching/graph_matcher.h"
@@ -35,7 +36,7 @@ inline void ExplainMatch(const agraph::AGraph& building, const sgraph::SGraph& g
   // The storey walked (from the truth's height): rooms are looked up on it, hypotheses on
   // another storey are said to be.
   const int true_storey =
-      truth.empty() ? -1 : pipeline::StoreyAtHeight(building, truth.back().pose.translation().z());
+      truth.empty() ? -1 : agraph::StoreyAtHeight(building, truth.back().pose.translation().z());
   std::printf("explain: true B_x_M (%.2f, %.2f, %.1f deg) from %d keyframes, storey %d\n", xi.x(),
               xi.y(), xi.z() * 180 / M_PI, traj.keyframes, true_storey);
   const auto a_rooms = matching::DescribeARooms(building);

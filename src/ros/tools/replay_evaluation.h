@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/pipeline/evaluation.h"
 #include "is_graphs/pipeline/localization_pipeline.h"
@@ -45,7 +46,7 @@ class MatchAudit {
       const auto e = pipeline::CompareTransforms(m.bim_T_map, traj.bim_T_map_gravity, keyframes);
       const int true_storey =
           truth.empty() ? -1
-                        : pipeline::StoreyAtHeight(building_, truth.back().pose.translation().z());
+                        : agraph::StoreyAtHeight(building_, truth.back().pose.translation().z());
       const bool wrong_storey = m.storey >= 0 && true_storey >= 0 && m.storey != true_storey;
       const bool wrong = pipeline::IsWrongMatch(e) || wrong_storey;
       wrong_ += wrong;

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "is_graphs/sgraph/sgraph.h"
+
+namespace is_graphs {
+namespace sgraph {
+
+/// Storeys walked (issue 22): a level is a height in M the robot walked on. A stair climb ends
+/// on a new level once the robot has risen or fallen `min_rise` from every level known and
+/// settled there (two keyframes within `settle`); keyframes on the flight keep the level they
+/// left. Coming back to a known level's height puts it on that level again.
+struct LevelConfig {
+  double tolerance{0.5};  // m: a keyframe this close to a level's height is on it
+  double min_rise{1.5};   // m: a new level lies this far from all others, at least
+  double settle{0.15};    // m: between two keyframes standing on a new level
+  std::string Validate() const;
+};
+
+class LevelTracker {
+ public:
+  explicit LevelTracker(const LevelConfig& config = {}) : config_(config) {}
+
+  /// The level of the next keyframe, at height `z` (its base_link in M).
+  int Add(double z);
+  void Reset() { heights_.clear(), current_ = -1, has_last_ = false; }
+  /// The height of level `level`'s first keyframe.
+  double Height(int level) const { return heights_[level]; }
+  int size() const { return static_cast<int>(heights_.size()); }
+
+ private:
+  LevelConfig config_;
+  std::vector<double> heights_;
+  int current_{-1};
+  double last_z_{0.0};
+  bool has_last_{false};
+};
+
+/// The level of the newest keyframe (0 for an empty graph).
+int CurrentLevel(const SGraph& graph);
+/// Whether keyframes lie on more than one level.
+bool HasLevels(const SGraph& graph);
+/// The level a room or a plane belongs to: that of the first of its keyframes (-1 if none).
+int LevelOfRoom(const SGraph& graph, const Room& room);
+int LevelOfPlane(const SGraph& graph, int plane_id);
+/// The part of `graph` on `level`: its keyframes and their observations, the planes they
+/// observe, the rooms and doorways of its keyframes, its floor. Ids are kept.
+SGraph LevelSubgraph(const SGraph& graph, int level);
+
+}  // namespace sgraph
+}  // namespace is_graphs
