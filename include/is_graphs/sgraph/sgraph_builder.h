@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -121,7 +122,10 @@ class SGraphBuilder {
   double FloorHeight() const;
   BackendProblem MakeProblem() const;
   /// A doorway's width from the gap in its wall's points around the crossing; 0 if not closed.
+  /// Measured on full clouds; once they are thinned, the last width so measured.
   double DoorwayWidthLocked(const Doorway& doorway, const SGraph& graph) const;
+  /// Thins the clouds of keyframes that left the optimization's window (BackendConfig).
+  void ThinOldCloudsLocked();
   Eigen::Matrix<double, 6, 6> OdometryInformation(const Eigen::Isometry3d& relative) const;
 
   FrontendConfig frontend_;
@@ -140,7 +144,9 @@ class SGraphBuilder {
 
   Eigen::Isometry3d map_T_odom_{Eigen::Isometry3d::Identity()};
   std::vector<Keyframe> keyframes_;
-  std::vector<PointList> clouds_;  // per keyframe, in base_link
+  std::vector<PointList> clouds_;                 // per keyframe, in base_link
+  size_t thinned_clouds_{0};                      // the first ones, out of the window: thinned
+  mutable std::map<int, double> doorway_widths_;  // by doorway id, measured on full clouds
   std::vector<MapPlane> planes_;
   std::vector<PlaneObservation> observations_;
   std::vector<BackendRoom> rooms_;

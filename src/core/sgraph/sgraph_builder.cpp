@@ -37,6 +37,8 @@ void SGraphBuilder::ClearGraphLocked() {
   map_T_odom_ = Eigen::Isometry3d::Identity();
   keyframes_.clear();
   clouds_.clear();
+  thinned_clouds_ = 0;
+  doorway_widths_.clear();
   planes_.clear();
   observations_.clear();
   rooms_.clear();
@@ -211,6 +213,7 @@ void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& 
   }
   keyframes_.push_back(kf);
   clouds_.push_back(std::move(cloud));
+  ThinOldCloudsLocked();
   result.status = ScanStatus::kKeyframe;
   result.keyframe = kf.id;
   auto t0 = Clock::now();
