@@ -71,6 +71,8 @@ class SGraphBuilder {
   /// The keyframes' clouds in M at their current poses, voxel-filtered.
   PointList MapCloud(double voxel_size) const;
   int num_keyframes() const;
+  /// Points kept in the keyframes' clouds (their memory; old ones thinned, BackendConfig).
+  size_t num_cloud_points() const;
   /// The stamp of the newest odometry accepted (-1 before any, and after a reset).
   double last_odometry_stamp() const;
   /// Keyframes added since the last Optimize() started.

@@ -188,6 +188,13 @@ int SGraphBuilder::num_keyframes() const {
   return static_cast<int>(keyframes_.size());
 }
 
+size_t SGraphBuilder::num_cloud_points() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  size_t n = 0;
+  for (const auto& c : clouds_) n += c.size();
+  return n;
+}
+
 double SGraphBuilder::last_odometry_stamp() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return last_odom_stamp_;
