@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo report test screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching evaluate clean format
+.PHONY: all setup build demo report test screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching bench-long evaluate clean format
 
 all: build
 
@@ -63,6 +63,14 @@ bench-sgraph: build
 # Matching time for S-Graphs of 3, 10, 20 rooms against A-Graphs of 10, 60, 200 rooms.
 bench-matching: build
 	@.ws/devel/lib/is_graphs/bench_matching
+
+# An hour-long run (issue 22) without a bag: bench_long feeds the simulator's scans of
+# bags/long/L1_large_hour.yaml (the D6 walk looped for 60 min) straight into the pipeline and
+# prints per-10-minute p50/p99 of optimization, matching, merging, the pipeline's real-time
+# factor and peak RSS (about 20-30 min). LONG_SCENARIO=, LONG_DURATION=s, LONG_WINDOW=s.
+bench-long: build
+	@nice .ws/devel/lib/is_graphs/bench_long $${LONG_SCENARIO:-bags/long/L1_large_hour.yaml} \
+	  --root $(CURDIR) $${LONG_DURATION:+--duration $$LONG_DURATION} --window $${LONG_WINDOW:-600}
 
 # Localization (replay_pipeline: the core the nodes run) on every full-length scenario bag
 # present, against ground truth and the odometry / S-Graph baselines: .ws/evaluate/results.md,

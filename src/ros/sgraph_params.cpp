@@ -113,6 +113,9 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "corridor_along_sigma", b.corridor_along_sigma);
   Read(pnh, "floor_sigma", b.floor_sigma);
   Read(pnh, "polygon_room_sigma", b.polygon_room_sigma);
+  Read(pnh, "window_keyframes", b.window_keyframes);
+  Read(pnh, "window_plane_anchors", b.window_plane_anchors);
+  Read(pnh, "window_cloud_voxel_size", b.window_cloud_voxel_size);
   // The configs name the field; the parameter carries the same name under the node.
   const std::string ns = pnh.getNamespace() + "/";
   for (const std::string& e : {p.cloud.Validate(), f.Validate(), b.Validate()}) {

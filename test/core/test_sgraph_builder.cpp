@@ -107,6 +107,33 @@ TEST_F(BuilderTest, MapsTheRoomAndCorrectsTheDrift) {
   EXPECT_FALSE(builder.MapCloud(0.2).empty());
 }
 
+// A window of 2 keyframes (BackendConfig::window_keyframes): the older keyframes are held, the
+// result stays as good as the whole graph's, and the clouds out of the window are thinned.
+TEST_F(BuilderTest, AWindowedBackEndMapsTheRoomAsWellAndThinsOldClouds) {
+  BackendConfig windowed;
+  windowed.window_keyframes = 2;
+  windowed.window_cloud_voxel_size = 0.3;
+  SGraphBuilder small(FrontendConfig{}, windowed), whole(FrontendConfig{}, BackendConfig{});
+  Run(small, 12.0);
+  Run(whole, 12.0);
+  const SGraph a = small.Snapshot(), b = whole.Snapshot();
+  ASSERT_EQ(a.keyframes.size(), b.keyframes.size());
+  ASSERT_GE(a.keyframes.size(), 6u);
+  double error = 0.0, apart = 0.0;
+  for (size_t i = 0; i < a.keyframes.size(); ++i) {
+    const Vector3d p = a.keyframes[i].pose.translation();
+    error = std::max(error, (p - Truth(a.keyframes[i].stamp - kStart).translation()).norm());
+    apart = std::max(apart, (p - b.keyframes[i].pose.translation()).norm());
+  }
+  EXPECT_LT(error, 0.05);
+  EXPECT_LT(apart, 0.03);
+  ASSERT_EQ(a.rooms.size(), 1u);
+  EXPECT_LT((a.rooms[0].center.head<2>() - Vector2d(4, 2.5)).norm(), 0.1);
+  // The old keyframes' clouds are thinned to 0.3 m; the map cloud still covers the room.
+  EXPECT_LT(small.num_cloud_points(), whole.num_cloud_points() / 2);
+  EXPECT_GT(small.MapCloud(0.2).size(), whole.MapCloud(0.2).size() / 2);
+}
+
 TEST_F(BuilderTest, BadInputIsSkippedWithAWarning) {
   SGraphBuilder builder(FrontendConfig{}, BackendConfig{});
   // A scan before any odometry.

@@ -37,6 +37,17 @@ struct BackendConfig {
   // or a crossing corridor that opens the view.
   double polygon_room_sigma{1.0};
 
+  // Windowed optimization (issue 22, hour-long runs): each optimization moves only the newest
+  // window_keyframes keyframes and what they observe (planes, the rooms on those planes, the
+  // floor); older keyframes enter held at their values where they tie something that moves (the
+  // keyframe before the window through its odometry edge; of the others observing a moved plane,
+  // the newest window_plane_anchors per plane), the rest of the graph stays out. 0: the whole
+  // graph every time. Once a keyframe leaves the window its cloud (read only by the doorway
+  // width, cached before, and the map cloud) is thinned to window_cloud_voxel_size (0: kept).
+  int window_keyframes{100};
+  int window_plane_anchors{20};
+  double window_cloud_voxel_size{0.15};  // m
+
   /// Empty when valid, else what is wrong (naming the field).
   std::string Validate() const;
 };

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct BackendProblem {
   std::vector<BackendRoom> rooms;
   BackendFloor floor;
   double odometry_scale{1.0};  // odometry distance scale factor: initial value, written back
+  // Windowed (SelectWindow, backend_window.h): ids of what enters held at its value. Keyframes
+  // and observations are then only the window's part; planes, rooms and the floor all of them
+  // (a plane, room or floor centre neither moved nor held has no factor and stays out).
+  std::set<int> constant_keyframes, constant_planes, constant_rooms;
+  bool constant_floor{false};
 };
 
 struct BackendSummary {
@@ -50,7 +56,8 @@ struct BackendSummary {
   double final_cost{0.0};
   int iterations{0};
   double seconds{0.0};
-  int num_keyframes{0};
+  int num_keyframes{0};           // in the problem (moved or held)
+  int num_variable_keyframes{0};  // of them, moved
   int num_residual_blocks{0};
   std::string message;
 };

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -70,6 +71,8 @@ class SGraphBuilder {
   /// The keyframes' clouds in M at their current poses, voxel-filtered.
   PointList MapCloud(double voxel_size) const;
   int num_keyframes() const;
+  /// Points kept in the keyframes' clouds (their memory; old ones thinned, BackendConfig).
+  size_t num_cloud_points() const;
   /// The stamp of the newest odometry accepted (-1 before any, and after a reset).
   double last_odometry_stamp() const;
   /// Keyframes added since the last Optimize() started.
@@ -123,7 +126,10 @@ class SGraphBuilder {
   void SplitFloorsByLevel(SGraph* graph, double ground_floor) const;
   BackendProblem MakeProblem() const;
   /// A doorway's width from the gap in its wall's points around the crossing; 0 if not closed.
+  /// Measured on full clouds; once they are thinned, the last width so measured.
   double DoorwayWidthLocked(const Doorway& doorway, const SGraph& graph) const;
+  /// Thins the clouds of keyframes that left the optimization's window (BackendConfig).
+  void ThinOldCloudsLocked();
   Eigen::Matrix<double, 6, 6> OdometryInformation(const Eigen::Isometry3d& relative) const;
 
   FrontendConfig frontend_;
@@ -142,7 +148,9 @@ class SGraphBuilder {
 
   Eigen::Isometry3d map_T_odom_{Eigen::Isometry3d::Identity()};
   std::vector<Keyframe> keyframes_;
-  std::vector<PointList> clouds_;  // per keyframe, in base_link
+  std::vector<PointList> clouds_;                 // per keyframe, in base_link
+  size_t thinned_clouds_{0};                      // the first ones, out of the window: thinned
+  mutable std::map<int, double> doorway_widths_;  // by doorway id, measured on full clouds
   std::vector<MapPlane> planes_;
   std::vector<PlaneObservation> observations_;
   std::vector<BackendRoom> rooms_;

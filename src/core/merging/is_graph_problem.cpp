@@ -18,6 +18,7 @@
 #include "is_graphs/merging/cost/room_match_cost.h"
 #include "is_graphs/merging/cost/surface_match_cost.h"
 #include "is_graphs/merging/cost/transform_prior_cost.h"
+#include "is_graphs/sgraph/backend_window.h"
 #include "is_graphs/sgraph/sgraph_factors.h"
 #include "wall_deviation_blocks.h"
 
@@ -42,16 +43,20 @@ double RoomCentreSigma(const sgraph::Room& room, const MergerConfig& config) {
   return std::max(config.room_sigma, 1.0 / std::sqrt(smallest));
 }
 
-/// Holds all but the newest `window` keyframes (ids grow with time) as the S-Graph published
-/// them: the merge's cost stays bounded on long runs, and what it moves is what the pose uses.
-void HoldOldKeyframes(int window, sgraph::SGraphFactors& s, ceres::Problem& problem) {
-  if (window <= 0) return;
-  int hold = static_cast<int>(s.poses.size()) - window;
-  for (auto& [id, block] : s.poses) {
-    if (hold-- <= 0) break;
-    for (double* b : {block.t.data(), block.q.coeffs().data()})
-      if (problem.HasParameterBlock(b)) problem.SetParameterBlockConstant(b);
-  }
+/// The S-Graph as the merge sees it: the newest `window_keyframes` keyframes move with B_x_M, and
+/// with them the planes they observe and the rooms on those; older keyframes enter held as the
+/// S-Graph published them where they tie something that moves, the rest stays out
+/// (sgraph::SelectWindow). The merge's cost stays bounded on long runs; what it moves is what the
+/// pose uses. Planes and rooms left out still enter through a match, held as published.
+sgraph::BackendProblem WindowedSGraph(const sgraph::SGraph& graph, const MergerConfig& config) {
+  sgraph::BackendProblem s = sgraph::BackendProblemFromSnapshot(graph);
+  if (!config.optimize_sgraph) return s;
+  sgraph::BackendConfig window = config.sgraph;
+  window.window_keyframes = config.window_keyframes;
+  const std::vector<sgraph::Keyframe> keyframes = std::move(s.keyframes);
+  const std::vector<sgraph::PlaneObservation> observations = std::move(s.observations);
+  sgraph::SelectWindow(keyframes, observations, window, s);
+  return s;
 }
 
 }  // namespace
@@ -69,11 +74,10 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
   ceres::Problem problem;  // owns costs, losses and manifolds
   agraph::AGraphProblem a_problem(a_graph, config.agraph);
   a_problem.AddTo(problem);
-  const sgraph::BackendProblem s_problem = sgraph::BackendProblemFromSnapshot(s_graph);
+  const sgraph::BackendProblem s_problem = WindowedSGraph(s_graph, config);
   sgraph::SGraphFactors s(s_problem);
   if (config.optimize_sgraph) {
     s.AddTo(s_problem, config.sgraph, problem);
-    HoldOldKeyframes(config.window_keyframes, s, problem);
     // The odometry's scale as the S-Graph estimated it over the whole run (the window sees less).
     if (problem.HasParameterBlock(&s.odometry_scale))
       problem.SetParameterBlockConstant(&s.odometry_scale);

@@ -124,6 +124,10 @@ std::string BackendConfig::Validate() const {
   c.Positive("corridor_along_sigma", corridor_along_sigma);
   c.Positive("floor_sigma", floor_sigma);
   c.Positive("polygon_room_sigma", polygon_room_sigma);
+  c.Range("window_keyframes", window_keyframes, 0, 1e6);
+  if (window_keyframes > 0) c.Range("window_keyframes", window_keyframes, 2, 1e6);
+  c.Range("window_plane_anchors", window_plane_anchors, 1, 1e6);
+  c.Range("window_cloud_voxel_size", window_cloud_voxel_size, 0.0, 5.0);
   return c.error();
 }
 

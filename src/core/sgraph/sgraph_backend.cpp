@@ -11,6 +11,9 @@ namespace sgraph {
 BackendSummary OptimizeSGraph(BackendProblem& problem, const BackendConfig& config) {
   BackendSummary summary;
   summary.num_keyframes = static_cast<int>(problem.keyframes.size());
+  summary.num_variable_keyframes = 0;
+  for (const auto& k : problem.keyframes)
+    summary.num_variable_keyframes += problem.constant_keyframes.count(k.id) ? 0 : 1;
   if (problem.keyframes.empty()) {
     summary.message = "no keyframes";
     return summary;

@@ -38,6 +38,8 @@ void SGraphBuilder::ClearGraphLocked() {
   map_T_odom_ = Eigen::Isometry3d::Identity();
   keyframes_.clear();
   clouds_.clear();
+  thinned_clouds_ = 0;
+  doorway_widths_.clear();
   planes_.clear();
   observations_.clear();
   rooms_.clear();
@@ -214,6 +216,7 @@ void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& 
   kf.level = levels_.Add(kf.pose.translation().z());
   keyframes_.push_back(kf);
   clouds_.push_back(std::move(cloud));
+  ThinOldCloudsLocked();
   result.status = ScanStatus::kKeyframe;
   result.keyframe = kf.id;
   auto t0 = Clock::now();

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <set>
 
+#include "is_graphs/sgraph/backend_window.h"
 #include "is_graphs/sgraph/cloud_filter.h"
 #include "is_graphs/sgraph/floor_node.h"
 #include "is_graphs/sgraph/sgraph_builder.h"
@@ -11,12 +12,11 @@ namespace sgraph {
 
 BackendProblem SGraphBuilder::MakeProblem() const {
   BackendProblem problem;
-  problem.keyframes = keyframes_;
   for (const auto& p : planes_) problem.planes.push_back(p.plane);
-  problem.observations = observations_;
   problem.rooms = rooms_;
   problem.floor = floor_;
   problem.odometry_scale = odometry_scale_;
+  SelectWindow(keyframes_, observations_, backend_, problem);  // the keyframes, observations
   return problem;
 }
 
@@ -46,8 +46,13 @@ BackendSummary SGraphBuilder::Optimize() {
   // What was added while Ceres ran moves with the newest optimized keyframe.
   const Eigen::Isometry3d delta =
       problem.keyframes.back().pose * keyframes_[num_keyframes - 1].pose.inverse();
-  for (size_t i = 0; i < keyframes_.size(); ++i)
-    keyframes_[i].pose = i < num_keyframes ? problem.keyframes[i].pose : delta * keyframes_[i].pose;
+  for (const auto& k : problem.keyframes) {  // the window's part (ids are indices)
+    if (problem.constant_keyframes.count(k.id)) continue;
+    if (k.id >= 0 && static_cast<size_t>(k.id) < num_keyframes && keyframes_[k.id].id == k.id)
+      keyframes_[k.id].pose = k.pose;
+  }
+  for (size_t i = num_keyframes; i < keyframes_.size(); ++i)
+    keyframes_[i].pose = delta * keyframes_[i].pose;
   for (size_t i = 0; i < planes_.size(); ++i) {
     MapPlane& p = planes_[i];
     if (i < num_planes) {
@@ -152,6 +157,12 @@ double SGraphBuilder::DoorwayWidthLocked(const Doorway& doorway, const SGraph& g
     const size_t i = static_cast<size_t>(k - keyframes_.begin());
     for (size_t j = i > 0 ? i - 1 : 0; j <= i + 2 && j < clouds_.size(); ++j) near.insert(j);
   }
+  // Thinned clouds (out of the window) would give another gap: the width measured before.
+  const bool full = near.empty() || *near.begin() >= thinned_clouds_;
+  if (!full) {
+    auto cached = doorway_widths_.find(doorway.id);
+    if (cached != doorway_widths_.end()) return cached->second;
+  }
   std::vector<double> coords;
   for (size_t i : near) {
     const Eigen::Isometry3d& pose = keyframes_[i].pose;
@@ -167,7 +178,19 @@ double SGraphBuilder::DoorwayWidthLocked(const Doorway& doorway, const SGraph& g
         coords.push_back(u);
     }
   }
-  return GapWidth(coords, c.max_width);
+  const double width = GapWidth(coords, c.max_width);
+  if (full) doorway_widths_[doorway.id] = width;
+  return width;
+}
+
+void SGraphBuilder::ThinOldCloudsLocked() {
+  const size_t window = static_cast<size_t>(std::max(0, backend_.window_keyframes));
+  if (window == 0 || backend_.window_cloud_voxel_size <= 0.0) return;
+  for (; thinned_clouds_ + window < clouds_.size(); ++thinned_clouds_) {
+    PointList& cloud = clouds_[thinned_clouds_];
+    cloud = VoxelFilter(cloud, backend_.window_cloud_voxel_size);
+    cloud.shrink_to_fit();
+  }
 }
 
 Eigen::Isometry3d SGraphBuilder::MapToOdom() const {
@@ -190,6 +213,13 @@ PointList SGraphBuilder::MapCloud(double voxel_size) const {
 int SGraphBuilder::num_keyframes() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return static_cast<int>(keyframes_.size());
+}
+
+size_t SGraphBuilder::num_cloud_points() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  size_t n = 0;
+  for (const auto& c : clouds_) n += c.size();
+  return n;
 }
 
 double SGraphBuilder::last_odometry_stamp() const {

@@ -49,13 +49,18 @@ void SGraphFactors::AddTo(const BackendProblem& problem, const BackendConfig& co
     ceres_problem.AddParameterBlock(b.t.data(), 3);
     ceres_problem.AddParameterBlock(b.q.coeffs().data(), 4, quaternion);
   }
-  if (!problem.keyframes.empty()) {
-    PoseBlock& first = poses.at(problem.keyframes.front().id);
-    ceres_problem.SetParameterBlockConstant(first.t.data());
-    ceres_problem.SetParameterBlockConstant(first.q.coeffs().data());
-  }
+  auto hold = [&](const Keyframe& k) {
+    PoseBlock& b = poses.at(k.id);
+    ceres_problem.SetParameterBlockConstant(b.t.data());
+    ceres_problem.SetParameterBlockConstant(b.q.coeffs().data());
+  };
+  if (!problem.keyframes.empty()) hold(problem.keyframes.front());
+  const auto& held = problem.constant_keyframes;  // windowed (backend_window.h)
+  for (const auto& k : problem.keyframes)
+    if (held.count(k.id)) hold(k);
   for (const auto& k : problem.keyframes) {
     if (k.previous < 0 || !poses.count(k.previous)) continue;
+    if (held.count(k.id) && held.count(k.previous)) continue;  // nothing to move
     PoseBlock& a = poses.at(k.previous);
     PoseBlock& b = poses.at(k.id);
     ceres_problem.AddResidualBlock(
@@ -91,11 +96,21 @@ void SGraphFactors::AddTo(const BackendProblem& problem, const BackendConfig& co
   for (auto& [id, block] : planes)
     if (block.observed) ceres_problem.SetManifold(block.n.data(), sphere);
 
+  // Planes held in a windowed problem: a moved room's planes that the window does not see.
+  for (int id : problem.constant_planes) {
+    auto pl = planes.find(id);
+    if (pl == planes.end() || pl->second.observed) continue;
+    for (double* b : {pl->second.n.data(), &pl->second.d}) {
+      ceres_problem.AddParameterBlock(b, b == &pl->second.d ? 1 : 3);
+      ceres_problem.SetParameterBlockConstant(b);
+    }
+  }
   for (const auto& r : problem.rooms) {
+    if (problem.constant_rooms.count(r.id)) continue;
     Eigen::Vector2d& c = centres.at(r.id);
     for (size_t i = 0; i < r.planes.size() && i < r.distances.size(); ++i) {
       auto pl = planes.find(r.planes[i]);
-      if (pl == planes.end() || !pl->second.observed) continue;
+      if (pl == planes.end() || !ceres_problem.HasParameterBlock(&pl->second.d)) continue;
       ceres::CostFunction* cost =
           r.type == RoomType::kCorridor
               ? CorridorPlaneCost::Create(r.distances[i], r.z, r.axis, r.initial_center,
@@ -105,10 +120,15 @@ void SGraphFactors::AddTo(const BackendProblem& problem, const BackendConfig& co
                                      pl->second.n.data(), &pl->second.d);
     }
   }
-  if (!problem.floor.present) return;
+  if (!problem.floor.present || problem.constant_floor) return;
   for (size_t i = 0; i < problem.floor.rooms.size() && i < problem.floor.offsets.size(); ++i) {
     auto c = centres.find(problem.floor.rooms[i]);
-    if (c == centres.end() || !ceres_problem.HasParameterBlock(c->second.data())) continue;
+    if (c == centres.end()) continue;
+    if (problem.constant_rooms.count(c->first)) {  // windowed: a room the window does not move
+      ceres_problem.AddParameterBlock(c->second.data(), 2);
+      ceres_problem.SetParameterBlockConstant(c->second.data());
+    }
+    if (!ceres_problem.HasParameterBlock(c->second.data())) continue;
     ceres_problem.AddResidualBlock(
         FloorRoomCost::Create(problem.floor.offsets[i], config.floor_sigma), nullptr,
         floor_centre.data(), c->second.data());
