@@ -38,7 +38,7 @@ struct MatcherConfig {
   // sight line from the keyframes that observed them through an interior BIM wall): each costs
   // up to sight_penalty (x min(1, length / surface_full_length)); 0: not used.
   double sight_penalty{0.1};
-  int sight_viewpoints{12};        // keyframes per plane whose sight lines are checked
+  int sight_viewpoints{12};  // keyframes per plane whose sight lines are checked
   // A UNIQUE answer must fit the walls seen: at least unique_min_wall_share of their length
   // (SurfaceEvidence, on its storey) once they add up to unique_min_walls full-length walls;
   // else AMBIGUOUS. Right UNIQUE answers on the scenario bags fit 0.75-1.0 of them (H3's walls

@@ -52,6 +52,5 @@ CloudError CloudAgainstWallSurfaces(const std::vector<Eigen::Vector3f>& points_i
   return out;
 }
 
-
 }  // namespace pipeline
 }  // namespace is_graphs
