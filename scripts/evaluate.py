@@ -117,6 +117,50 @@ def walked_at(odom, t):
     return float(np.interp(t, odom.timestamps, np.concatenate([[0.0], np.cumsum(steps)])))
 
 
+def storey_at(storeys, z):
+    """Index into `storeys` (dicts with "elevation") of the one a base at height z stands on: the
+    highest elevation at or below z + 5 cm (agraph::StoreyAtHeight); -1 below them all."""
+    best = -1
+    for i, s in enumerate(storeys):
+        if s["elevation"] <= z + 0.05 and (best < 0 or s["elevation"] > storeys[best]["elevation"]):
+            best = i
+    return best
+
+
+def per_storey(storeys, truth_t, truth_xyz, est_t, est_xyz, odom_t, odom_xy, tol_xy=0.5,
+               tol_z=1.0):
+    """Issue 22's per-storey time to localize. For each storey the truth walks on, in the order
+    reached: when the robot arrived on it (s, from truth_t[0]) and the seconds and metres walked
+    from then to the first pose in B on it within tol_xy (x-y) and tol_z of the truth (None:
+    never). Arrays: stamps (N) and positions (N x 3, or N x 2 for odometry)."""
+    truth_t, truth_xyz = np.asarray(truth_t), np.asarray(truth_xyz)
+    est_t, est_xyz = np.asarray(est_t), np.asarray(est_xyz).reshape(-1, 3)
+    steps = np.linalg.norm(np.diff(np.asarray(odom_xy)[:, :2], axis=0), axis=1)
+    walked = np.concatenate([[0.0], np.cumsum(steps)])
+    at = [storey_at(storeys, z) for z in truth_xyz[:, 2]]
+    out, seen = [], set()
+    for k, s in enumerate(at):
+        if s < 0 or s in seen:
+            continue
+        seen.add(s)
+        arrived = truth_t[k]
+        entry = {"storey": storeys[s].get("name", str(s)), "arrived_s": float(arrived - truth_t[0]),
+                 "localized_after_s": None, "localized_after_m": None}
+        for t, p in zip(est_t, est_xyz):
+            if t < arrived:
+                continue
+            want = np.array([np.interp(t, truth_t, truth_xyz[:, i]) for i in range(3)])
+            if storey_at(storeys, want[2]) != s:
+                continue
+            if np.linalg.norm(p[:2] - want[:2]) <= tol_xy and abs(p[2] - want[2]) <= tol_z:
+                entry["localized_after_s"] = float(t - arrived)
+                entry["localized_after_m"] = float(np.interp(t, odom_t, walked)
+                                                   - np.interp(arrived, odom_t, walked))
+                break
+        out.append(entry)
+    return out
+
+
 def public(numbers):
     return {k: v for k, v in numbers.items() if not k.startswith("_")}
 
@@ -176,6 +220,13 @@ def evaluate_scenario(name, yaml_path, bag, note, replay, out_dir):
     r.update({"bag": os.path.relpath(bag, REPO), "building": os.path.relpath(building, REPO),
               "storey": storey, "localizer_storey": told, "note": note})
     graph = agraph_json(building)
+    with open(graph) as f:
+        storeys = json.load(f).get("storeys", [])
+    est, odom = read_tum(prefix + ".pose_bim.tum"), read_tum(prefix + ".odom.tum")
+    if storeys and est is not None:
+        truth = r["_truth"]
+        r["storeys"] = per_storey(storeys, truth.timestamps, truth.positions_xyz, est.timestamps,
+                                  est.positions_xyz, odom.timestamps, odom.positions_xyz)
     trajectory_plot(name, r["_truth"], r["_series"], graph, storey,
                     os.path.join(out_dir, name, "trajectory.png"))
     error_plot(name, r["_t0"], r["_series"], os.path.join(out_dir, name, "error.png"))

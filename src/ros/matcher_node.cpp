@@ -49,6 +49,7 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "sight_penalty", c.sight_penalty);
   ros_params::Read(pnh, "unique_min_wall_share", c.unique_min_wall_share);
   ros_params::Read(pnh, "unique_min_walls", c.unique_min_walls);
+  ros_params::Read(pnh, "stair_height_tolerance", c.stair_height_tolerance);
   ros_params::Read(pnh, "sight_viewpoints", c.sight_viewpoints);
   ros_params::Read(pnh, "sight_door_margin", c.sight_door_margin);
   ros_params::Read(pnh, "surface_min_length", c.surface_min_length);
@@ -63,6 +64,7 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "proposal_margin_share", c.proposal_margin_share);
   ros_params::Read(pnh, "proposal_crossing_penalty", c.proposal_crossing_penalty);
   ros_params::Read(pnh, "proposal_max_candidates", c.proposal_max_candidates);
+  ros_params::Read(pnh, "proposal_cross_check", c.proposal_cross_check);
   ros_params::Read(pnh, "ambiguity_margin", c.ambiguity_margin);
   ros_params::Read(pnh, "doubt_centre_tolerance", c.doubt_centre_tolerance);
   ros_params::Read(pnh, "cluster_yaw_deg", c.cluster_yaw_deg);

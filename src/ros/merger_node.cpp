@@ -316,6 +316,8 @@ class MergerNode {
                   sol.seconds * 1e3);
         break;
     }
+    for (const std::string& warning : out.warnings)
+      ROS_WARN_THROTTLE(10.0, "merger_node: %s", warning.c_str());
     bool publish_status = false;
     {
       std::lock_guard<std::mutex> lock(mutex_);

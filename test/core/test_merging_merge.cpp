@@ -334,6 +334,29 @@ TEST(Merge, BimToOdomPutsTheNewestKeyframeAtItsHeightUnderATiltedOdometry) {
               1e-3);
 }
 
+// Issue 22: a merged pose beyond every storey's height (a robot that climbed out of the
+// building, or a wrong height in B) comes with a warning naming it.
+TEST(Merge, APoseAboveEveryStoreyIsWarnedAbout) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.5);
+  SyntheticCase c = MakeCase(building, truth, 0.0);
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  const MergeOutput inside = merger.OnMatch(c.match, c.s.graph);
+  ASSERT_TRUE(inside.merged) << inside.message;
+  EXPECT_TRUE(inside.warnings.empty()) << inside.warnings.front();
+  // The same walls seen 10 m higher up in M (vertical planes: the observations still hold).
+  for (auto& k : c.s.graph.keyframes) {
+    k.pose.translation().z() += 10.0;
+    k.odom_pose.translation().z() += 10.0;
+  }
+  const MergeOutput above = merger.OnSGraph(c.s.graph);
+  ASSERT_TRUE(above.merged) << above.message;
+  ASSERT_EQ(above.warnings.size(), 1u);
+  EXPECT_NE(above.warnings.front().find("above every storey"), std::string::npos)
+      << above.warnings.front();
+}
+
 // `building` with a second storey 3 m up of the same plan (floors of one plan): copies of its
 // surfaces, walls and rooms with ids after the originals.
 agraph::AGraph StackedTwice(const agraph::AGraph& building) {

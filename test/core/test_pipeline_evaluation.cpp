@@ -113,6 +113,29 @@ TEST(PipelineEvaluation, StoreyAtHeightIsTheHighestFloorBelow) {
   EXPECT_EQ(agraph::StoreyAtHeight(building, -4.0), -1);
 }
 
+// Issue 22: a robot beyond every storey's height is named (the merger warns with it).
+TEST(PipelineEvaluation, AHeightOutsideEveryStoreyIsNamed) {
+  agraph::AGraph building;
+  EXPECT_EQ(agraph::HeightOutsideStoreys(building, 100.0), "") << "no storeys: nothing to say";
+  for (const auto& [elevation, height] : {std::pair<double, double>{0.0, 3.0},
+                                          {-3.0, 3.0},
+                                          {3.0, 0.0}}) {  // the top one without a height: 3 m
+    agraph::Storey s;
+    s.id = static_cast<int>(building.storeys.size());
+    s.elevation = elevation;
+    s.height = height;
+    building.storeys.push_back(s);
+  }
+  for (double z : {-3.9, -2.5, 0.5, 3.5, 6.9})
+    EXPECT_EQ(agraph::HeightOutsideStoreys(building, z), "") << z;
+  const std::string above = agraph::HeightOutsideStoreys(building, 7.2);
+  EXPECT_NE(above.find("above every storey"), std::string::npos) << above;
+  EXPECT_NE(above.find("7.2"), std::string::npos) << above;
+  const std::string below = agraph::HeightOutsideStoreys(building, -4.2);
+  EXPECT_NE(below.find("below every storey (-3 to 6 m)"), std::string::npos) << below;
+  EXPECT_EQ(agraph::HeightOutsideStoreys(building, -4.2, 1.5), "");  // the margin given
+}
+
 }  // namespace
 }  // namespace pipeline
 }  // namespace is_graphs

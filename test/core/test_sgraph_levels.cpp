@@ -122,6 +122,40 @@ TEST(SGraphLevels, WithOneStoreyLoadedOtherLevelsAreNotMatched) {
   EXPECT_TRUE(said) << "a warning names the level";
 }
 
+TEST(SGraphLevels, OnAStairTheRobotIsNotMatched) {
+  // At the top of a flight the newest keyframe is still counted on the level it left (it has
+  // not settled): matched there, the answer named the storey below (M4). Not matched at all.
+  const auto building = agraph::LoadAGraph(testing::TwoRoomsPath());
+  ASSERT_TRUE(building.ok()) << building.error();
+  SGraph g = TwoLevels();
+  for (auto& k : g.keyframes) k.pose.translation().z() = 3.0 * k.level;
+  g.keyframes.resize(2);  // both on level 0, at z = 0
+  EXPECT_DOUBLE_EQ(HeightOffLevel(g), 0.0);
+  Keyframe top = g.keyframes.back();
+  top.id = 20, top.previous = top.id - 1;
+  top.pose.translation().z() = 2.6;  // up the flight, level 0 still
+  g.keyframes.push_back(top);
+  EXPECT_DOUBLE_EQ(HeightOffLevel(g), 2.6);
+  matching::GraphMatcher matcher;
+  matcher.SetAGraph(building.value());
+  matching::GraphMatch m = matcher.Match(g);
+  EXPECT_EQ(m.status, matching::MatchStatus::kNone);
+  bool said = false;
+  for (const auto& w : m.warnings)
+    said = said || w.find("2.6 m above the level") != std::string::npos;
+  EXPECT_TRUE(said) << (m.warnings.empty() ? "no warning" : m.warnings.front());
+  // Settled on it (a new level whose first keyframe is this one): matched again.
+  g.keyframes.back().level = 1;
+  EXPECT_DOUBLE_EQ(HeightOffLevel(g), 0.0);
+  m = matcher.Match(g);
+  for (const auto& w : m.warnings) EXPECT_EQ(w.find("above the level"), std::string::npos) << w;
+  // Down a flight: below the level.
+  g.keyframes.back().level = 0;
+  g.keyframes.back().pose.translation().z() = -0.8;
+  EXPECT_DOUBLE_EQ(HeightOffLevel(g), -0.8);
+  EXPECT_EQ(matcher.Match(g).status, matching::MatchStatus::kNone);
+}
+
 }  // namespace
 }  // namespace sgraph
 }  // namespace is_graphs

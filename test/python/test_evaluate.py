@@ -189,3 +189,32 @@ def test_report_tables(tmp_path):
     assert "R1: full bag absent" in text and "D2: bag missing" in text
     saved = json.load(open(tmp_path / "results.json"))
     assert saved["missing_bags"] == ["D2"] and saved["datasets"]["D5"]["wrong_matches"] == 1
+
+
+def test_per_storey_time_to_localize(tmp_path):
+    """Issue 22: up a stair from a storey localized at 5 s to the next (3 m up) at 20 s, where the
+    pose follows at once; a third storey never reached is not listed."""
+    storeys = [{"name": "EG", "elevation": 0.0}, {"name": "1.OG", "elevation": 3.0},
+               {"name": "2.OG", "elevation": 6.0}]
+    assert evaluate.storey_at(storeys, 0.4) == 0 and evaluate.storey_at(storeys, 2.97) == 1
+    assert evaluate.storey_at(storeys, -1.0) == -1
+    t = np.arange(0.0, 30.0, 1.0)
+    z = np.where(t < 15, 0.5, np.minimum(0.5 + (t - 15) * 0.6, 3.5))  # climbs from 15 s to 20 s
+    truth = np.stack([t, np.zeros_like(t), z], axis=1)  # walks 1 m/s along x
+    est_t = t[t >= 5]
+    est = truth[t >= 5].copy()
+    est[:, 0] += 0.1
+    rows = evaluate.per_storey(storeys, t, truth, est_t, est, t, truth[:, :2])
+    assert [r["storey"] for r in rows] == ["EG", "1.OG"]
+    assert rows[0]["arrived_s"] == 0.0 and rows[0]["localized_after_s"] == 5.0
+    assert rows[0]["localized_after_m"] == pytest.approx(5.0)
+    assert rows[1]["arrived_s"] == 20.0  # 2.9 m up at 19 s is still below the floor
+    assert rows[1]["localized_after_s"] == 0.0 and rows[1]["localized_after_m"] == 0.0
+    # A pose on the wrong floor (3 m off in z) is no localization there.
+    est[t[t >= 5] >= 20, 2] -= 3.0
+    rows = evaluate.per_storey(storeys, t, truth, est_t, est, t, truth[:, :2])
+    assert rows[1]["localized_after_s"] is None and rows[1]["localized_after_m"] is None
+    md = evaluation_report.storeys({"M9": {"localizer_storey": "", "storeys": rows},
+                                    "D5": {"localizer_storey": "0", "storeys": rows}})
+    assert "| M9 | EG | 0.0 | 5.0 | 5.0 |" in md and "| M9 | 1.OG | 20.0 | never | – |" in md
+    assert not any("D5" in line for line in md)

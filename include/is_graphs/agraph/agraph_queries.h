@@ -18,6 +18,12 @@ Result<int> FindStorey(const AGraph& graph, const std::string& storey);
 /// another storey is a wrong match, however well x, y and yaw agree (floors of one plan).
 int StoreyAtHeight(const AGraph& graph, double z);
 
+/// "" when a robot whose base is at height `z` in B stands within the building's storeys: from
+/// `margin` below the lowest elevation to `margin` above the top storey's ceiling (its height;
+/// 3 m where the IFC gives none). Otherwise what is wrong, with z and the storeys' span (a
+/// robot that left the building, or a wrong height in B). "" for a graph without storeys.
+std::string HeightOutsideStoreys(const AGraph& graph, double z, double margin = 1.0);
+
 /// The sub-graph of one storey (by index), with ids re-indexed densely and references to
 /// elements outside the storey dropped: walls of the storey with their surfaces, its rooms and
 /// its doorways (a doorway left without rooms is dropped, with a warning). The result has one

@@ -59,7 +59,9 @@ struct MatchStats {
 ///     mapping corners of the seen wall planes onto the BIM's corners, with the hypotheses'
 ///     motions, scored on every wall plane seen, the walked path and the sight lines (Propose);
 ///     one clearly best gives UNIQUE with its surface pairs (and its room pairs where a
-///     hypothesis of the same motion has them).
+///     hypothesis of the same motion has them). A UNIQUE answer of steps 1-5 is checked the
+///     same way (proposal_cross_check): if the wall planes clearly prefer another motion, the
+///     answer is AMBIGUOUS.
 /// Incremental: an S-room unchanged since the last call keeps its candidates, and the last best
 /// motion is grown first. Not thread-safe; one matcher per thread.
 class GraphMatcher {
@@ -79,6 +81,7 @@ class GraphMatcher {
   void ForgetHistory() {
     cache_.clear();
     last_best_.reset();
+    last_checked_.reset();
     if (doubter_) doubter_->ForgetHistory();
   }
 
@@ -100,10 +103,12 @@ class GraphMatcher {
   /// The wall planes weighed as evidence (SurfaceEvidence): those of no S-room and of S-rooms
   /// none of `hypotheses` pairs.
   std::vector<WallSegment> LooseWalls(const sgraph::SGraph& graph,
+                                      const std::vector<WallSegment>& walls,
                                       const std::vector<RoomDescriptor>& s_rooms,
                                       const std::vector<Hypothesis>& hypotheses) const;
   /// What one S-Graph shows beyond its rooms, the same for every hypothesis and the doubter.
   struct Evidence {
+    std::vector<WallSegment> walls;   // every wall plane seen (WallSegments)
     std::vector<PathStep> path;       // the walked path
     std::vector<WallSegment> loose;   // the loose wall planes (LooseWalls)
     std::vector<SeenWall> seen;       // ... with the keyframes that observed them
@@ -134,16 +139,28 @@ class GraphMatcher {
     Hypothesis best;
     std::vector<Hypothesis> competitors;
     std::vector<WallSegment> walls;  // the wall planes it was decided on
+    // Other motions explaining proposal_margin more of the walls than `best` (that lost on
+    // crossings or sight lines).
+    std::vector<Hypothesis> more_walls;
     int candidates{0};
     bool scored{false};  // best and competitors were scored (else too many to decide)
   };
+  /// With `hypotheses_if_too_many`, where the corners fit too many places, the hypotheses'
+  /// motions alone are weighed (never UNIQUE then): the check of a UNIQUE room answer.
   ProposalDecision Propose(const sgraph::SGraph& graph, const Evidence& evidence,
-                           const std::vector<Hypothesis>& hypotheses) const;
+                           const std::vector<Hypothesis>& hypotheses,
+                           bool hypotheses_if_too_many = false) const;
+  /// Whether the proposals' decision puts `best` (the rooms' UNIQUE answer) outside its best
+  /// cluster: the wall planes seen clearly prefer another motion (proposal_cross_check).
+  bool WallsPreferAnother(const ProposalDecision& proposed, const Hypothesis& best) const;
   /// Fills `out` (UNIQUE) from a proposal: its surface pairs, and the room pairs of a
   /// hypothesis of the same motion.
   void FillFromProposal(const ProposalDecision& proposed, const std::vector<Hypothesis>& hypotheses,
                         const std::vector<RoomDescriptor>& s_rooms, const Evidence& evidence,
                         GraphMatch* out);
+  /// Each pair of `h` replaced by a full-rank pair of its S-room (from the cached candidates)
+  /// that fits clearly better under `h`'s motion, on its storey, its A-room not held by another.
+  void RepickPairs(const std::vector<RoomDescriptor>& s_rooms, Hypothesis* h) const;
   /// The room pairs of `h` (by S-room id) and its surface pairs (an S-plane with every piece of
   /// its best-scoring A-feature).
   std::vector<MatchPair> RoomPairs(const Hypothesis& h,
@@ -165,7 +182,7 @@ class GraphMatcher {
   GraphMatch MatchLevel(const sgraph::SGraph& graph);
   /// A UNIQUE `out` whose motion fits too little of the walls seen becomes AMBIGUOUS
   /// (unique_min_wall_share).
-  void GateOnWallsSeen(const sgraph::SGraph& graph, GraphMatch* out) const;
+  void GateOnWallsSeen(const std::vector<WallSegment>& walls, GraphMatch* out) const;
 
   MatcherConfig config_;
   bool has_agraph_{false};
@@ -177,8 +194,9 @@ class GraphMatcher {
   std::vector<Corner> a_corners_;
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
-  int level_{0};      // of the S-Graph level matched last
-  int a_storeys_{0};  // storeys in the A-Graph
+  std::optional<Pose2> last_checked_;  // the last UNIQUE motion the walls agreed with
+  int level_{0};                       // of the S-Graph level matched last
+  int a_storeys_{0};                   // storeys in the A-Graph
   MatchStats stats_;
   /// The same matcher with doubt_centre_tolerance (null: no doubt). Owning it makes a
   /// GraphMatcher move-only: one per thread, as said above.

@@ -46,6 +46,11 @@ struct MatcherConfig {
   // 0: not used.
   double unique_min_wall_share{0.6};
   double unique_min_walls{4.0};
+  // The robot on a stair: its newest keyframe this far above or below the first keyframe of its
+  // S-Graph level (sgraph_node's level_tolerance) is between storeys, and the level it is
+  // counted on is the one it left: not matched (NONE) until it settles on a level. Matching
+  // there named the storey below with the robot on the floor above (M4, 4 times).
+  double stair_height_tolerance{0.5};
   double sight_door_margin{0.15};  // a sight line this far beyond a doorway's half-width is
                                    // through the wall (door_margin is for the walked path)
   // --- proposals from the first scans (CornerProposals; before a room is closed) ---
@@ -64,6 +69,11 @@ struct MatcherConfig {
   double proposal_margin_share{0.15};
   double proposal_crossing_penalty{2.0};
   int proposal_max_candidates{3000};  // more distinct motions: too little seen, not decided
+  // A UNIQUE answer from the room pairs is weighed by the proposals too: if its motion is not
+  // in their best cluster (the walls seen clearly prefer another), AMBIGUOUS. Found by the
+  // harsh campaign: a row of twin offices with one wall moved, another turned (seed 17 trial
+  // 778), and a twin wing entered through an opening the plan lacks (seed 21 trial 769).
+  bool proposal_cross_check{true};
   // --- decision ---
   double ambiguity_margin{0.4};      // hypotheses scoring within this of the best compete
   double cluster_yaw_deg{3.0};       // hypotheses closer than this (and cluster_translation)

@@ -45,6 +45,7 @@ struct MergeOutput {
   ConsistencyReport consistency;
   RecentEvidence evidence;
   std::string message;
+  std::vector<std::string> warnings;  // about the merged pose (e.g. a height outside the storeys)
 };
 
 /// The merger's core: keeps the A-Graph, the match pairs gathered from UNIQUE matches and the

@@ -40,6 +40,10 @@ class LevelTracker {
 
 /// The level of the newest keyframe (0 for an empty graph).
 int CurrentLevel(const SGraph& graph);
+/// How far the newest keyframe lies above (+) or below (-) the first keyframe of its level, in
+/// M (0 for an empty graph): beyond the level tolerance the robot is on a stair, still counted
+/// on the level it left until it settles.
+double HeightOffLevel(const SGraph& graph);
 /// Whether keyframes lie on more than one level.
 bool HasLevels(const SGraph& graph);
 /// The level a room or a plane belongs to: that of the first of its keyframes (-1 if none).

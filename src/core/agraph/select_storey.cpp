@@ -1,5 +1,7 @@
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
+#include <sstream>
 
 #include "is_graphs/agraph/agraph_queries.h"
 
@@ -136,6 +138,23 @@ int StoreyAtHeight(const agraph::AGraph& building, double z) {
     if (best < 0 || s.elevation > building.storeys[best].elevation) best = static_cast<int>(i);
   }
   return best < 0 ? -1 : building.storeys[best].id;
+}
+
+std::string HeightOutsideStoreys(const agraph::AGraph& building, double z, double margin) {
+  if (building.storeys.empty()) return "";
+  constexpr double kDefaultStoreyHeight = 3.0;  // m, where the IFC gives no height
+  double lowest = building.storeys.front().elevation, top = lowest;
+  for (const agraph::Storey& s : building.storeys) {
+    lowest = std::min(lowest, s.elevation);
+    top = std::max(top, s.elevation + (s.height > 0.0 ? s.height : kDefaultStoreyHeight));
+  }
+  if (z >= lowest - margin && z <= top + margin) return "";
+  std::ostringstream out;
+  out.precision(3);
+  out << "the robot is at z = " << z << " m in the BIM, " << (z < lowest ? "below" : "above")
+      << " every storey (" << lowest << " to " << top
+      << " m): it left the building's storeys, or its height in the BIM is wrong";
+  return out.str();
 }
 
 }  // namespace agraph

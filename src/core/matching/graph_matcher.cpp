@@ -74,6 +74,7 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   has_agraph_ = true;
   cache_.clear();
   last_best_.reset();
+  last_checked_.reset();
   if (doubter_) doubter_->SetAGraph(graph);
   return CheckAGraph(graph);
 }
@@ -175,6 +176,18 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
 }
 
 GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
+  if (const double off = sgraph::HeightOffLevel(graph);
+      std::abs(off) > config_.stair_height_tolerance) {
+    GraphMatch out;
+    out.a_graph_sha256 = a_sha256_;
+    out.s_graph_revision = graph.revision;
+    std::ostringstream why;
+    why.precision(2);
+    why << "the robot is " << std::abs(off) << " m " << (off > 0 ? "above" : "below")
+        << " the level it walks on (a stair): not matching until it settles on a level";
+    out.warnings.push_back(why.str());
+    return out;
+  }
   if (!sgraph::HasLevels(graph)) return MatchLevel(graph);
   const int level = sgraph::CurrentLevel(graph);
   if (level != level_) {
@@ -194,9 +207,8 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   return MatchLevel(sgraph::LevelSubgraph(graph, level));
 }
 
-void GraphMatcher::GateOnWallsSeen(const sgraph::SGraph& graph, GraphMatch* out) const {
+void GraphMatcher::GateOnWallsSeen(const std::vector<WallSegment>& walls, GraphMatch* out) const {
   if (out->status != MatchStatus::kUnique || config_.unique_min_wall_share <= 0.0) return;
-  const std::vector<WallSegment> walls = WallSegments(graph, config_);
   const double bound = surfaces_.Bound(walls);
   if (bound < config_.unique_min_walls) return;
   const Eigen::Vector3d xi = geometry::ToXYYaw(out->bim_T_map);
@@ -230,7 +242,8 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
       s_rooms.empty() ? std::vector<Hypothesis>() : Hypothesize(s_rooms);
   // One set of loose wall planes for this S-Graph, the doubter's hypotheses scored on it too.
   Evidence evidence;
-  evidence.loose = LooseWalls(graph, s_rooms, hypotheses);
+  evidence.walls = WallSegments(graph, config_);
+  evidence.loose = LooseWalls(graph, evidence.walls, s_rooms, hypotheses);
   evidence.path = WalkedPath(graph, config_.max_path_step);
   evidence.doors = UsableDoorways(graph, &out.warnings);
   if (config_.sight_penalty > 0.0 && !s_rooms.empty())
@@ -247,14 +260,35 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
     doubt = Doubt(s_rooms, hypotheses[decision.best], s_points, evidence);
     if (doubt) decision.status = MatchStatus::kAmbiguous;
   }
+  // 5b. A UNIQUE answer from the rooms checked against every wall plane seen (the proposals):
+  // where the walls clearly prefer another motion, the two kinds of evidence disagree and
+  // neither is taken (AMBIGUOUS, the walls' best its competitor).
+  // Checked once per motion: a UNIQUE answer of the motion checked last is not checked again
+  // (the proposals cost 5-10x the rooms' matching; the merger watches a localized motion).
+  std::optional<ProposalDecision> walls_view;
+  if (decision.status == MatchStatus::kUnique && config_.proposals &&
+      config_.proposal_cross_check &&
+      !(last_checked_ &&
+        SameMotion(*last_checked_, hypotheses[decision.best].pose, s_points, config_))) {
+    walls_view = Propose(graph, evidence, hypotheses, /*hypotheses_if_too_many=*/true);
+    if (WallsPreferAnother(*walls_view, hypotheses[decision.best])) {
+      decision.status = MatchStatus::kAmbiguous;
+      last_checked_.reset();
+      out.warnings.push_back(
+          "the room pairs' best motion and the wall planes' best disagree: not UNIQUE");
+    } else {
+      last_checked_ = hypotheses[decision.best].pose;
+    }
+  }
   // 6. Without a UNIQUE answer from the rooms: the proposals, on every wall plane seen.
   if (decision.status != MatchStatus::kUnique && config_.proposals) {
-    ProposalDecision proposed = Propose(graph, evidence, hypotheses);
+    ProposalDecision proposed = walls_view ? *walls_view : Propose(graph, evidence, hypotheses);
+    if (walls_view) proposed.status = MatchStatus::kAmbiguous;  // the rooms say otherwise
     stats_.proposals = proposed.candidates;
     if (proposed.status == MatchStatus::kUnique) {
       FillFromProposal(proposed, hypotheses, s_rooms, evidence, &out);
       out.competing_storeys = CompetingStoreys(out);
-      GateOnWallsSeen(graph, &out);
+      GateOnWallsSeen(evidence.walls, &out);
       stats_.milliseconds =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       return out;
@@ -275,6 +309,7 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
   if (decision.status != MatchStatus::kNone || out.status == MatchStatus::kNone)
     out.status = decision.status;
   if (decision.best >= 0) {
+    RepickPairs(s_rooms, &hypotheses[decision.best]);
     const Hypothesis& best = hypotheses[decision.best];
     last_best_ = best.pose;
     out.score = best.score;
@@ -292,12 +327,43 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
     if (doubt)
       out.alternatives.push_back(
           {doubt->pose.ToIsometry(), doubt->score, doubt->rooms, doubt->storey});
+    if (walls_view && walls_view->scored && decision.status != MatchStatus::kUnique) {
+      out.alternatives.push_back(
+          {walls_view->best.pose.ToIsometry(), walls_view->best.score, 0, walls_view->best.storey});
+      ++out.hypotheses;
+    }
   }
   out.competing_storeys = CompetingStoreys(out);
-  GateOnWallsSeen(graph, &out);
+  GateOnWallsSeen(evidence.walls, &out);
   stats_.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+void GraphMatcher::RepickPairs(const std::vector<RoomDescriptor>& s_rooms, Hypothesis* h) const {
+  // A pair taken while the hypothesis grew, under a motion fitted to fewer rooms, may be an
+  // axis-only fit (a room taken for a corridor) where a full-rank pair of the same S-room fits
+  // clearly better under the final motion (seed 30 trial 346 of the harsh campaign: an office
+  // paired with the corridor outside it, its own A-room at quality 0.89 against 0.40).
+  const auto strict = EvaluationTolerances::From(config_);
+  constexpr double kClearlyBetter = 0.2;  // in pair quality
+  std::set<int> taken;                    // A-rooms held by a full-rank pair
+  for (const auto& m : h->members)
+    if (m.full_rank) taken.insert(m.a_room);
+  for (auto& m : h->members) {
+    const auto cached = cache_.find(s_rooms[m.s_room].id);
+    if (cached == cache_.end()) continue;
+    for (const RoomCandidate& c : cached->second.candidates) {
+      if (!c.full_rank || c.a_room == m.a_room || taken.count(c.a_room)) continue;
+      const RoomDescriptor& a = a_rooms_[c.a_room];
+      if (a.storey != h->storey) continue;
+      PairEvaluation eval = EvaluatePair(s_rooms[m.s_room], a, h->pose, true, strict);
+      if (!eval.ok || eval.quality < m.evaluation.quality + kClearlyBetter) continue;
+      if (m.full_rank) taken.erase(m.a_room);
+      taken.insert(c.a_room);
+      m = {m.s_room, c.a_room, true, std::move(eval)};
+    }
+  }
 }
 
 std::vector<MatchPair> GraphMatcher::RoomPairs(const Hypothesis& h,
@@ -430,6 +496,7 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
 }
 
 std::vector<WallSegment> GraphMatcher::LooseWalls(const sgraph::SGraph& graph,
+                                                  const std::vector<WallSegment>& walls,
                                                   const std::vector<RoomDescriptor>& s_rooms,
                                                   const std::vector<Hypothesis>& hypotheses) const {
   if (config_.surface_evidence_weight <= 0.0) return {};
@@ -446,8 +513,8 @@ std::vector<WallSegment> GraphMatcher::LooseWalls(const sgraph::SGraph& graph,
   for (const auto& room : graph.rooms)
     if (paired.count(room.id)) in_paired_rooms.insert(room.planes.begin(), room.planes.end());
   std::vector<WallSegment> loose;
-  for (auto& w : WallSegments(graph, config_))
-    if (!in_paired_rooms.count(w.id)) loose.push_back(std::move(w));
+  for (const auto& w : walls)
+    if (!in_paired_rooms.count(w.id)) loose.push_back(w);
   return loose;
 }
 

@@ -39,11 +39,12 @@ Pose2 GraphMatcher::Refine(const std::vector<WallSegment>& walls, const Pose2& p
   return fit.translation_determined && fit.planes_determine_translation ? fit.pose : pose;
 }
 
-GraphMatcher::ProposalDecision GraphMatcher::Propose(
-    const sgraph::SGraph& graph, const Evidence& evidence,
-    const std::vector<Hypothesis>& hypotheses) const {
+GraphMatcher::ProposalDecision GraphMatcher::Propose(const sgraph::SGraph& graph,
+                                                     const Evidence& evidence,
+                                                     const std::vector<Hypothesis>& hypotheses,
+                                                     bool hypotheses_if_too_many) const {
   ProposalDecision out;
-  out.walls = WallSegments(graph, config_);
+  out.walls = evidence.walls;
   double seen = 0.0;  // walls seen, a plane surface_full_length long counting 1
   for (const auto& w : out.walls) seen += std::min(1.0, w.length / config_.surface_full_length);
   if (seen < config_.proposal_min_walls || a_corners_.empty()) return out;
@@ -52,13 +53,16 @@ GraphMatcher::ProposalDecision GraphMatcher::Propose(
   bool too_many = false;
   std::vector<MotionProposal> proposals = ProposeMotions(
       corners, a_corners_, config_.angle_tolerance_deg, config_.proposal_max_candidates, &too_many);
-  if (too_many) {  // what is seen fits too many places to weigh them all
+  if (too_many) proposals.clear();
+  for (const auto& h : hypotheses)
+    if (!h.members.empty()) proposals.push_back({h.pose, h.storey, 0});
+  // What is seen fits too many places to weigh them all: undecided (or, to check the room
+  // hypotheses against the walls, only their motions weighed).
+  if (too_many && (!hypotheses_if_too_many || proposals.empty())) {
     out.status = MatchStatus::kAmbiguous;
     out.candidates = config_.proposal_max_candidates + 1;
     return out;
   }
-  for (const auto& h : hypotheses)
-    if (!h.members.empty()) proposals.push_back({h.pose, h.storey, 0});
   out.candidates = static_cast<int>(proposals.size());
   if (proposals.empty()) return out;
   out.status = MatchStatus::kAmbiguous;
@@ -104,10 +108,38 @@ GraphMatcher::ProposalDecision GraphMatcher::Propose(
     if (h.storey == out.best.storey && SameMotion(out.best.pose, h.pose, points, config_)) continue;
     out.competitors.push_back(h);
   }
+  // Motions that put clearly more of the walls seen on BIM walls than the best, though they
+  // lose on what contradicts them (a walk through a wall: an opening the plan lacks).
+  for (const Hypothesis& h : full)
+    if (h.evidence >= out.best.evidence + config_.proposal_margin &&
+        !(h.storey == out.best.storey && SameMotion(out.best.pose, h.pose, points, config_)))
+      out.more_walls.push_back(h);
   const bool enough = out.best.evidence >= config_.proposal_min_share * seen;
-  if (enough && out.best.crossings == 0 && out.competitors.empty())
+  if (enough && out.best.crossings == 0 && out.competitors.empty() && !too_many)
     out.status = MatchStatus::kUnique;
   return out;
+}
+
+bool GraphMatcher::WallsPreferAnother(const ProposalDecision& proposed,
+                                      const Hypothesis& best) const {
+  if (!proposed.scored) return false;  // too little seen, or too many motions to weigh
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& w : proposed.walls) points.push_back(0.5 * (w.a + w.b));
+  auto same = [&](const Hypothesis& h) {
+    return h.storey == best.storey && SameMotion(h.pose, best.pose, points, config_);
+  };
+  // Another motion puts clearly more of the walls seen on BIM walls: evidence against `best`
+  // that its score (which counts the walk through walls against the other) hides.
+  for (const Hypothesis& h : proposed.more_walls)
+    if (!same(h)) {
+      const double rooms_best_walls = surfaces_.Explained(proposed.walls, best.pose, best.storey);
+      if (h.evidence >= rooms_best_walls + config_.proposal_margin) return true;
+    }
+  // The rooms' best is among the walls' best cluster: they agree (or the walls cannot tell).
+  if (same(proposed.best)) return false;
+  for (const Hypothesis& c : proposed.competitors)
+    if (same(c)) return false;
+  return true;
 }
 
 void GraphMatcher::FillFromProposal(const ProposalDecision& proposed,

@@ -66,6 +66,7 @@ std::string MatcherConfig::Validate() const {
       {"deviation_angle_deg", deviation_angle_deg, 0.0, 45.0, true},
       {"deviation_max_offset", deviation_max_offset, 0.0, 5.0, true},
       {"deviation_max_angle_deg", deviation_max_angle_deg, 0.0, 45.0, true},
+      {"stair_height_tolerance", stair_height_tolerance, 0.0, 100.0, true},
   };
   for (const auto& f : fields) {
     const std::string error = Check(f.name, f.value, f.lo, f.hi, f.lo_open);

@@ -197,6 +197,9 @@ MergeOutput Merger::SolveAndCheck(const sgraph::SGraph& s_graph, bool starting) 
     // between the S-Graph's keyframe and odometry's over the lever arm from O's origin to the
     // robot: 0.5 deg over 30 m walked is 0.26 m in z (seen on AC11's second floor).
     const Eigen::Isometry3d bim_T_k = out.bim_T_map * map_T_k;
+    // Never silently a pose above the roof or below the basement (issue 22).
+    const std::string outside = agraph::HeightOutsideStoreys(a_graph_, bim_T_k.translation().z());
+    if (!outside.empty()) out.warnings.push_back(outside);
     const Eigen::Isometry3d c = bim_T_k * k->odom_pose.inverse();
     const Eigen::Isometry3d yaw_only = geometry::IsometryFromXYYaw(0.0, 0.0, geometry::Yaw(c), 0.0);
     out.bim_T_odom = yaw_only;

@@ -42,6 +42,14 @@ int CurrentLevel(const SGraph& graph) {
   return graph.keyframes.empty() ? 0 : graph.keyframes.back().level;
 }
 
+double HeightOffLevel(const SGraph& graph) {
+  if (graph.keyframes.empty()) return 0.0;
+  const Keyframe& newest = graph.keyframes.back();
+  for (const auto& k : graph.keyframes)
+    if (k.level == newest.level) return newest.pose.translation().z() - k.pose.translation().z();
+  return 0.0;
+}
+
 bool HasLevels(const SGraph& graph) {
   return std::any_of(graph.keyframes.begin(), graph.keyframes.end(),
                      [&](const Keyframe& k) { return k.level != graph.keyframes.front().level; });
@@ -50,6 +58,11 @@ bool HasLevels(const SGraph& graph) {
 namespace {
 
 int LevelOfKeyframe(const SGraph& graph, int id) {
+  // Keyframes come in id order: a binary search (per room, per snapshot), checked, with a scan
+  // for a graph that is not in order.
+  const auto it = std::lower_bound(graph.keyframes.begin(), graph.keyframes.end(), id,
+                                   [](const Keyframe& k, int value) { return k.id < value; });
+  if (it != graph.keyframes.end() && it->id == id) return it->level;
   for (const auto& k : graph.keyframes)
     if (k.id == id) return k.level;
   return -1;

@@ -2,6 +2,7 @@
 
 #include <pcl/ModelCoefficients.h>
 #include <pcl/PointIndices.h>
+#include <pcl/console/print.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/method_types.h>
@@ -40,7 +41,13 @@ std::vector<int> RansacPlane(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& clo
   seg.setIndices(indices);
   pcl::PointIndices inliers;
   pcl::ModelCoefficients coefficients;
+  // No plane among the candidates is an answer here (empty inliers), not an error, but PCL
+  // prints one to stderr for each (on a stair, every scan): its messages are silenced for this
+  // call only, unless PCL's verbosity was raised to debug.
+  const pcl::console::VERBOSITY_LEVEL verbosity = pcl::console::getVerbosityLevel();
+  if (verbosity < pcl::console::L_DEBUG) pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   seg.segment(inliers, coefficients);
+  pcl::console::setVerbosityLevel(verbosity);
   return std::vector<int>(inliers.indices.begin(), inliers.indices.end());
 }
 

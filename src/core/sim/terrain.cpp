@@ -52,26 +52,24 @@ Result<TerrainProfile> TerrainProfile::Build(const EmbreeScene& scene, const Tra
   t.heights_.reserve(n);
   double z = floor_z;
   const std::vector<Trajectory::Walk> walks = trajectory.Walks();
+  if (walks.empty()) {  // standing still: the start's floor
+    t.heights_.push_back(z);
+    return R::Ok(std::move(t));
+  }
   size_t w = 0;
   for (int k = 0; k < n; ++k) {
     const double s = k * t.step_;
     while (w + 1 < walks.size() && walks[w + 1].distance_begin <= s) ++w;
-    Eigen::Vector2d p = walks.empty() ? Eigen::Vector2d::Zero() : walks[w].from;
-    if (!walks.empty()) {
-      const Trajectory::Walk& walk = walks[w];
-      const Eigen::Vector2d d = walk.to - walk.from;
-      const double length = d.norm();
-      if (length > 1e-9) p += std::clamp(s - walk.distance_begin, 0.0, length) / length * d;
-    }
+    const Trajectory::Walk& walk = walks[w];
+    Eigen::Vector2d p = walk.from;
+    const Eigen::Vector2d d = walk.to - walk.from;
+    const double length = d.norm();
+    if (length > 1e-9) p += std::clamp(s - walk.distance_begin, 0.0, length) / length * d;
     // Down from a step's height above the last ground, twice a step deep.
     const float top = static_cast<float>(z + config.max_step);
     const RayHit hit =
         scene.Intersect(Ray{Eigen::Vector3f(p.x(), p.y(), top), Eigen::Vector3f(0.0f, 0.0f, -1.0f),
                             static_cast<float>(2.0 * config.max_step)});
-    if (walks.empty()) {
-      t.heights_.push_back(z);
-      break;
-    }
     if (hit.triangle < 0)
       return R::Error("terrain: no ground within " + std::to_string(config.max_step) +
                       " m of the last at " + At(p, s) + " (a drop, or a hole in the floor)");
