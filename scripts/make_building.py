@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Writes IFC files of procedural buildings from plan layouts (YAML; format in bim/README.md).
 
+A layout is one storey, or several (`storeys:`) joined by straight stair flights (`stairs:`).
+
   make_building.py LAYOUT.yaml -o OUT.ifc     one layout
   make_building.py --all                      bim/layouts/*.yaml -> bim/<stem>.ifc
   make_building.py --fixtures                 test/data/layouts/*.yaml -> test/data/<stem>.ifc

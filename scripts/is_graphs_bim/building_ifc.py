@@ -6,6 +6,9 @@ the storey; spaces are aggregated to it. Every wall is an IfcWall placed at its 
 with its x axis along the axis: an 'Axis' curve and a 'Body' extrusion of its mitred plan
 footprint. A door is an IfcOpeningElement voiding its host wall (IfcRelVoidsElement) filled
 by an IfcDoor (IfcRelFillsElement). Optionally 1st-level IfcRelSpaceBoundary relations.
+A layout with several storeys gets one IfcBuildingStorey each, and per flight an IfcStair
+(contained in its lower storey) aggregating an IfcStairFlight whose Body is its stepped side
+profile extruded across its width; the slabs over a flight are voided by IfcOpeningElements.
 
 The output is deterministic: GlobalIds are hashes of the building name and a stable key, the
 header and owner history carry fixed timestamps, and entities are created in layout order.
@@ -48,6 +51,7 @@ class IfcBuilder:
         self.lay = lay
         self.scale = 1000.0 if lay.units == "mm" else 1.0
         self.keys: dict[int, str] = {}  # step id -> stable key for the GlobalId
+        self.key_prefix = ""            # "storey:<i>/" while writing storey i of a multi-storey layout
         # placements are made last, parents first: the api's relation calls rewrite placements
         # they find (through 4x4 matrices), which would add rounding noise to exact values
         self.places: list[tuple] = []   # (product, parent product or None, origin, x direction)
@@ -93,7 +97,7 @@ class IfcBuilder:
 
     def rooted(self, ifc_class: str, key: str, name: str | None = None, predefined: str | None = None):
         e = ifcopenshell.api.root.create_entity(self.f, ifc_class=ifc_class, name=name, predefined_type=predefined)
-        self.keys[e.id()] = key
+        self.keys[e.id()] = self.key_prefix + key
         return e
 
     # --- the building --------------------------------------------------------------------
@@ -115,21 +119,33 @@ class IfcBuilder:
         building = self.rooted("IfcBuilding", "building", lay.name)
         rot = math.radians(lay.rotation_deg)
         self.place(building, site, lay.translation, (math.cos(rot), math.sin(rot)))
-        storey = self.rooted("IfcBuildingStorey", "storey", lay.storey_name)
-        self.place(storey, building, (0.0, 0.0, lay.elevation))
-        storey.Elevation = self.L(lay.elevation)
-        for e in (site, building, storey):
-            e.CompositionType = "ELEMENT"
-        ifcopenshell.api.aggregate.assign_object(f, products=[site], relating_object=project)
-        ifcopenshell.api.aggregate.assign_object(f, products=[building], relating_object=site)
-        ifcopenshell.api.aggregate.assign_object(f, products=[storey], relating_object=building)
-        self.storey = storey
+        if lay.storeys:
+            self._storeys(site, building, project)
+        else:
+            storey = self.rooted("IfcBuildingStorey", "storey", lay.storey_name)
+            self.place(storey, building, (0.0, 0.0, lay.elevation))
+            storey.Elevation = self.L(lay.elevation)
+            for e in (site, building, storey):
+                e.CompositionType = "ELEMENT"
+            ifcopenshell.api.aggregate.assign_object(f, products=[site], relating_object=project)
+            ifcopenshell.api.aggregate.assign_object(f, products=[building], relating_object=site)
+            ifcopenshell.api.aggregate.assign_object(f, products=[storey], relating_object=building)
+            self.storey = storey
+            self._storey_contents()
+        for product, parent, origin, xdir in self.places:
+            product.ObjectPlacement = self.placement(parent.ObjectPlacement if parent else None, origin, xdir)
+        self._finish()
+        return f
 
+    def _storey_contents(self, extra=()) -> None:
+        """Walls, doors, slabs, spaces (and ``extra`` contained products) of ``self.lay`` in
+        ``self.storey``."""
+        lay, f, storey = self.lay, self.f, self.storey
         walls = {w.id: self._wall(w) for w in lay.walls}
         doors = {d.id: self._door(d, walls[d.wall]) for d in lay.doors}
         slabs = self._slabs()
         spaces = {rm.name: self._space(rm) for rm in lay.rooms}
-        contained = list(walls.values()) + list(doors.values()) + slabs
+        contained = list(walls.values()) + list(doors.values()) + slabs + list(extra)
         # the api collects related products in sets: put them back in layout order (determinism)
         rel = ifcopenshell.api.spatial.assign_container(f, products=contained, relating_structure=storey)
         rel.RelatedElements = contained
@@ -138,10 +154,61 @@ class IfcBuilder:
             rel.RelatedObjects = list(spaces.values())
         if lay.space_boundaries:
             add_space_boundaries(self, spaces, walls, doors)
-        for product, parent, origin, xdir in self.places:
-            product.ObjectPlacement = self.placement(parent.ObjectPlacement if parent else None, origin, xdir)
-        self._finish()
-        return f
+
+    def _storeys(self, site, building, project) -> None:
+        """A multi-storey layout: one IfcBuildingStorey per storey, then each storey's contents
+        (GlobalId keys prefixed with the storey's index) and its flights up."""
+        top, f = self.lay, self.f
+        storeys = []
+        for i, st in enumerate(top.storeys):
+            e = self.rooted("IfcBuildingStorey", f"storey:{i}", st.storey_name)
+            self.place(e, building, (0.0, 0.0, st.elevation))
+            e.Elevation = self.L(st.elevation)
+            storeys.append(e)
+        for e in (site, building, *storeys):
+            e.CompositionType = "ELEMENT"
+        ifcopenshell.api.aggregate.assign_object(f, products=[site], relating_object=project)
+        ifcopenshell.api.aggregate.assign_object(f, products=[building], relating_object=site)
+        rel = ifcopenshell.api.aggregate.assign_object(f, products=storeys, relating_object=building)
+        rel.RelatedObjects = storeys
+        for i, st in enumerate(top.storeys):
+            self.lay, self.storey, self.key_prefix = st, storeys[i], f"storey:{i}/"
+            stairs = [self._stair(s) for s in top.stairs if s.lower == i]
+            self._storey_contents(stairs)
+        self.lay, self.key_prefix = top, ""
+
+    def _stair(self, s):
+        """IfcStair > IfcStairFlight: the flight's side profile (risers and treads, a 0.25 m
+        waist under them) in its vertical plane, extruded across its width."""
+        f = self.f
+        ifc2x3 = f.schema == "IFC2X3"
+        stair = self.rooted("IfcStair", f"stair:{s.id}", s.id, None if ifc2x3 else "STRAIGHT_RUN_STAIR")
+        if ifc2x3:
+            stair.ShapeType = "STRAIGHT_RUN_STAIR"
+        flight = self.rooted("IfcStairFlight", f"flight:{s.id}", f"{s.id} flight", None if ifc2x3 else "STRAIGHT")
+        if ifc2x3:
+            flight.NumberOfRiser, flight.NumberOfTreads = s.risers, s.risers - 1
+            flight.RiserHeight, flight.TreadLength = self.L(s.riser_height), self.L(s.tread)
+        else:
+            flight.NumberOfRisers, flight.NumberOfTreads = s.risers, s.risers - 1
+            flight.RiserHeight, flight.TreadLength = self.L(s.riser_height), self.L(s.tread)
+        self.place(stair, self.storey, (*s.start, 0.0), s.direction)
+        self.place(flight, stair)
+        n, h, t = s.risers, s.riser_height, s.tread
+        prof = [(0.0, 0.0)]
+        for k in range(1, n):
+            prof += [((k - 1) * t, k * h), (k * t, k * h)]
+        waist = 0.25
+        prof += [((n - 1) * t, (n - 1) * h - waist), (t, 0.0)]
+        profile = f.createIfcArbitraryClosedProfileDef("AREA", None, self.polyline(prof, True))
+        # profile plane: x along the flight, y up; extruded along -y of the flight (its width)
+        pos = f.createIfcAxis2Placement3D(self.pt(0.0, 0.5 * s.width, 0.0), self.direction(0.0, -1.0, 0.0),
+                                          self.direction(1.0, 0.0, 0.0))
+        solid = f.createIfcExtrudedAreaSolid(profile, pos, self.direction(0.0, 0.0, 1.0), self.L(s.width))
+        self.shape(flight, [solid])
+        rel = ifcopenshell.api.aggregate.assign_object(f, products=[flight], relating_object=stair)
+        rel.RelatedObjects = [flight]
+        return stair
 
     def _units(self) -> None:
         f = self.f
@@ -210,6 +277,13 @@ class IfcBuilder:
                                    kind)
                 self.place(slab, self.storey, (0.0, 0.0, z0))
                 self.shape(slab, [self.extrusion(outline, thick)])
+                for sid, hole in (lay.floor_openings if kind == "FLOOR" else lay.ceiling_openings):
+                    op = self.rooted("IfcOpeningElement", f"slab_opening:{kind}:{sid}", f"{sid} stairwell",
+                                     None if self.f.schema == "IFC2X3" else "OPENING")
+                    ifcopenshell.api.feature.add_feature(self.f, feature=op, element=slab)
+                    self.place(op, slab)
+                    self.shape(op, [self.extrusion(hole if geo.signed_area(hole) > 0 else hole[::-1],
+                                                   thick + 2 * OPENING_OVERSHOOT, -OPENING_OVERSHOOT)])
                 out.append(slab)
         return out
 

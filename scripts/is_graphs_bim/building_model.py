@@ -62,6 +62,45 @@ class Door:
 
 
 @dataclass
+class Stair:
+    """A straight flight from storey ``lower`` up to storey ``lower + 1`` (issue 22).
+
+    ``start`` is the middle of the first riser's foot (on the lower storey's floor), the flight
+    climbs along ``direction`` (a unit vector): ``risers`` risers of ``riser_height``, and
+    ``risers - 1`` treads of depth ``tread`` between them; the last riser steps onto the upper
+    storey's floor, whose slab edge is the end of the flight's run.
+    """
+    id: str
+    lower: int                # index of the storey the flight starts on
+    start: Point
+    direction: Point
+    width: float
+    risers: int
+    riser_height: float
+    tread: float
+    headroom_margin: float = 0.0  # m: how far the slab openings reach beyond the flight's run
+
+    @property
+    def run(self) -> float:
+        return (self.risers - 1) * self.tread
+
+    @property
+    def rise(self) -> float:
+        return self.risers * self.riser_height
+
+    def rect(self, u0: float, u1: float, extra_width: float = 0.0) -> list[Point]:
+        """The plan rectangle between u0 and u1 m along the flight, ccw."""
+        d, n = self.direction, geo.left(self.direction)
+        half = 0.5 * self.width + extra_width
+        return [geo.add(geo.add(self.start, d, u0), n, -half), geo.add(geo.add(self.start, d, u1), n, -half),
+                geo.add(geo.add(self.start, d, u1), n, half), geo.add(geo.add(self.start, d, u0), n, half)]
+
+    @property
+    def footprint(self) -> list[Point]:
+        return self.rect(0.0, self.run)
+
+
+@dataclass
 class Layout:
     name: str
     source: str
@@ -79,6 +118,13 @@ class Layout:
     rooms: list[Room]
     doors: list[Door]
     warnings: list[str] = field(default_factory=list)
+    # a multi-storey layout (``storeys:`` in the YAML): one Layout per storey (its plan, slabs,
+    # name and elevation), the flights between them; walls/rooms/doors above stay empty
+    storeys: list["Layout"] = field(default_factory=list)
+    stairs: list[Stair] = field(default_factory=list)
+    # slab openings (plan polygons) over flights: set on each storey's Layout
+    floor_openings: list[tuple[str, list[Point]]] = field(default_factory=list)
+    ceiling_openings: list[tuple[str, list[Point]]] = field(default_factory=list)
 
     def wall(self, wid: str) -> Wall:
         return next(w for w in self.walls if w.id == wid)

@@ -5,6 +5,10 @@ import math
 
 HEADER_KEYS = ("name", "schema", "units", "space_boundaries", "placement", "storey", "defaults",
                "floor_slab", "ceiling_slab", "points", "walls", "rooms", "doors")
+# a multi-storey layout: these at the top, the plan of each storey under storeys[i]
+MULTI_KEYS = ("name", "schema", "units", "space_boundaries", "placement", "defaults", "points",
+              "storeys", "stairs")
+STOREY_KEYS = ("name", "elevation", "floor_slab", "ceiling_slab", "walls", "rooms", "doors")
 DEFAULTS = {"wall_height": 2.9, "wall_thickness": 0.15, "exterior_thickness": 0.3,
             "door_width": 0.9, "door_height": 2.1}
 SCHEMAS = ("IFC4", "IFC2X3")
@@ -30,9 +34,17 @@ class Reader:
         self.data = data
         self.defaults = dict(DEFAULTS)
         self.points: dict[str, tuple[float, float]] = {}
+        self.prefix = ""  # "storeys[i]." in a storey's reader
 
     def error(self, field: str, message: str) -> LayoutError:
-        return LayoutError(self.source, field, message)
+        return LayoutError(self.source, self.prefix + field if field else self.prefix.rstrip("."), message)
+
+    def sub(self, data: dict, prefix: str) -> "Reader":
+        """A reader of one storey's mapping: fields named ``<prefix><field>``, sharing the
+        defaults and points of the whole layout."""
+        r = Reader(self.source, data, self.allow_zero)
+        r.defaults, r.points, r.prefix = self.defaults, self.points, prefix
+        return r
 
     # --- scalars -------------------------------------------------------------------------
     def number(self, d: dict, key: str, f: str, default=None, lo=None, lo_open=False, hi=None) -> float:
@@ -122,11 +134,13 @@ class Reader:
         return (float(v[0]), float(v[1]))
 
     # --- the header ----------------------------------------------------------------------
-    def header(self, default_name: str) -> dict:
+    def header(self, default_name: str, multi: bool = False) -> dict:
         d = self.data
+        keys = MULTI_KEYS if multi else HEADER_KEYS
         for k in d:
-            if k not in HEADER_KEYS:
-                raise self.error(k, f"unknown key (expected one of: {', '.join(HEADER_KEYS)})")
+            if k not in keys:
+                hint = " (a layout with storeys gives them per storey)" if multi and k in HEADER_KEYS else ""
+                raise self.error(k, f"unknown key{hint} (expected one of: {', '.join(keys)})")
         out = {"name": self.string(d, "name", "", default_name),
                "schema": self.choice(d, "schema", SCHEMAS, "IFC4"),
                "units": self.choice(d, "units", UNITS, "m"),
@@ -138,16 +152,38 @@ class Reader:
         if len(t) not in (2, 3) or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in t):
             raise self.error("placement.translation", f"expected [x, y] or [x, y, z], got {t!r}")
         out["translation"] = tuple(float(c) for c in (list(t) + [0.0])[:3])
-        st = self.mapping(d, "storey")
-        self.done(st, "storey", ("name", "elevation"))
-        out["storey_name"] = self.string(st, "name", "storey", "Ground floor")
-        out["elevation"] = self.number(st, "elevation", "storey", 0.0)
+        if not multi:
+            st = self.mapping(d, "storey")
+            self.done(st, "storey", ("name", "elevation"))
+            out["storey_name"] = self.string(st, "name", "storey", "Ground floor")
+            out["elevation"] = self.number(st, "elevation", "storey", 0.0)
         df = self.mapping(d, "defaults")
         self.done(df, "defaults", tuple(DEFAULTS))
         for k in DEFAULTS:
             self.defaults[k] = self.number(df, k, "defaults", DEFAULTS[k], lo=0.0, lo_open=True)
         for k, v in self.mapping(d, "points").items():
             self.points[str(k)] = self.to_point(v, f"points.{k}")
+        if multi:
+            out["storey_name"], out["elevation"] = "", 0.0
+            out["floor_thickness"] = out["ceiling_thickness"] = 0.0
+            out["slab_outline"] = None
+            return out
+        out.update(self.slabs())
+        return out
+
+    def storey(self, default_name: str) -> dict:
+        """A storey's own header (in a storey's reader): name, elevation, slabs."""
+        d = self.data
+        for k in d:
+            if k not in STOREY_KEYS:
+                raise self.error(k, f"unknown key (expected one of: {', '.join(STOREY_KEYS)})")
+        out = {"storey_name": self.string(d, "name", "", default_name),
+               "elevation": self.number(d, "elevation", "", None)}
+        out.update(self.slabs())
+        return out
+
+    def slabs(self) -> dict:
+        out = {}
         out["floor_thickness"], out["slab_outline"] = self._slab("floor_slab", True)
         out["ceiling_thickness"], _ = self._slab("ceiling_slab", False)
         return out
