@@ -149,6 +149,19 @@ TEST(SGraphLevels, OnAStairTheRobotIsNotMatched) {
   EXPECT_DOUBLE_EQ(HeightOffLevel(g), 0.0);
   m = matcher.Match(g);
   for (const auto& w : m.warnings) EXPECT_EQ(w.find("above the level"), std::string::npos) << w;
+  // Settled up there on level 0 still (a long landing the tracker took for the level, a
+  // plateau): the level's map is matched again.
+  g.keyframes.back().level = 0;
+  for (int i = 0; i < 2; ++i) {
+    Keyframe more = g.keyframes.back();
+    more.id += 1, more.previous = more.id - 1;
+    g.keyframes.push_back(more);
+  }
+  EXPECT_DOUBLE_EQ(HeightOffLevel(g), 2.6);
+  EXPECT_FALSE(OnStair(g, 0.5));
+  m = matcher.Match(g);
+  for (const auto& w : m.warnings) EXPECT_EQ(w.find("above the level"), std::string::npos) << w;
+  g.keyframes.resize(3);
   // Down a flight: below the level.
   g.keyframes.back().level = 0;
   g.keyframes.back().pose.translation().z() = -0.8;

@@ -158,9 +158,6 @@ class GraphMatcher {
   void FillFromProposal(const ProposalDecision& proposed, const std::vector<Hypothesis>& hypotheses,
                         const std::vector<RoomDescriptor>& s_rooms, const Evidence& evidence,
                         GraphMatch* out);
-  /// Each pair of `h` replaced by a full-rank pair of its S-room (from the cached candidates)
-  /// that fits clearly better under `h`'s motion, on its storey, its A-room not held by another.
-  void RepickPairs(const std::vector<RoomDescriptor>& s_rooms, Hypothesis* h) const;
   /// The room pairs of `h` (by S-room id) and its surface pairs (an S-plane with every piece of
   /// its best-scoring A-feature).
   std::vector<MatchPair> RoomPairs(const Hypothesis& h,

@@ -47,9 +47,10 @@ struct MatcherConfig {
   double unique_min_wall_share{0.6};
   double unique_min_walls{4.0};
   // The robot on a stair: its newest keyframe this far above or below the first keyframe of its
-  // S-Graph level (sgraph_node's level_tolerance) is between storeys, and the level it is
-  // counted on is the one it left: not matched (NONE) until it settles on a level. Matching
-  // there named the storey below with the robot on the floor above (M4, 4 times).
+  // S-Graph level (sgraph_node's level_tolerance), still rising or falling (sgraph::OnStair), is
+  // between storeys, and the level it is counted on is the one it left: not matched (NONE)
+  // until it settles. Matching there named the storey below with the robot on the floor above
+  // (M4, 4 times).
   double stair_height_tolerance{0.5};
   double sight_door_margin{0.15};  // a sight line this far beyond a doorway's half-width is
                                    // through the wall (door_margin is for the walked path)

@@ -44,6 +44,11 @@ int CurrentLevel(const SGraph& graph);
 /// M (0 for an empty graph): beyond the level tolerance the robot is on a stair, still counted
 /// on the level it left until it settles.
 double HeightOffLevel(const SGraph& graph);
+/// Whether the robot is on a stair: its newest keyframe more than `tolerance` off its level
+/// (HeightOffLevel) while still rising or falling (one of the two keyframes before it more than
+/// `settle` away in height). Settled off its level (a long landing the level tracker took for a
+/// level, a plateau) it is not: the level's own map is matched there.
+bool OnStair(const SGraph& graph, double tolerance, double settle = 0.15);
 /// Whether keyframes lie on more than one level.
 bool HasLevels(const SGraph& graph);
 /// The level a room or a plane belongs to: that of the first of its keyframes (-1 if none).

@@ -176,8 +176,8 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
 }
 
 GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
-  if (const double off = sgraph::HeightOffLevel(graph);
-      std::abs(off) > config_.stair_height_tolerance) {
+  if (sgraph::OnStair(graph, config_.stair_height_tolerance)) {
+    const double off = sgraph::HeightOffLevel(graph);
     GraphMatch out;
     out.a_graph_sha256 = a_sha256_;
     out.s_graph_revision = graph.revision;
@@ -309,7 +309,6 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
   if (decision.status != MatchStatus::kNone || out.status == MatchStatus::kNone)
     out.status = decision.status;
   if (decision.best >= 0) {
-    RepickPairs(s_rooms, &hypotheses[decision.best]);
     const Hypothesis& best = hypotheses[decision.best];
     last_best_ = best.pose;
     out.score = best.score;
@@ -338,32 +337,6 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
   stats_.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
-}
-
-void GraphMatcher::RepickPairs(const std::vector<RoomDescriptor>& s_rooms, Hypothesis* h) const {
-  // A pair taken while the hypothesis grew, under a motion fitted to fewer rooms, may be an
-  // axis-only fit (a room taken for a corridor) where a full-rank pair of the same S-room fits
-  // clearly better under the final motion (seed 30 trial 346 of the harsh campaign: an office
-  // paired with the corridor outside it, its own A-room at quality 0.89 against 0.40).
-  const auto strict = EvaluationTolerances::From(config_);
-  constexpr double kClearlyBetter = 0.2;  // in pair quality
-  std::set<int> taken;                    // A-rooms held by a full-rank pair
-  for (const auto& m : h->members)
-    if (m.full_rank) taken.insert(m.a_room);
-  for (auto& m : h->members) {
-    const auto cached = cache_.find(s_rooms[m.s_room].id);
-    if (cached == cache_.end()) continue;
-    for (const RoomCandidate& c : cached->second.candidates) {
-      if (!c.full_rank || c.a_room == m.a_room || taken.count(c.a_room)) continue;
-      const RoomDescriptor& a = a_rooms_[c.a_room];
-      if (a.storey != h->storey) continue;
-      PairEvaluation eval = EvaluatePair(s_rooms[m.s_room], a, h->pose, true, strict);
-      if (!eval.ok || eval.quality < m.evaluation.quality + kClearlyBetter) continue;
-      if (m.full_rank) taken.erase(m.a_room);
-      taken.insert(c.a_room);
-      m = {m.s_room, c.a_room, true, std::move(eval)};
-    }
-  }
 }
 
 std::vector<MatchPair> GraphMatcher::RoomPairs(const Hypothesis& h,

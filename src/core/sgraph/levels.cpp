@@ -50,6 +50,15 @@ double HeightOffLevel(const SGraph& graph) {
   return 0.0;
 }
 
+bool OnStair(const SGraph& graph, double tolerance, double settle) {
+  if (std::abs(HeightOffLevel(graph)) <= tolerance) return false;
+  const size_t n = graph.keyframes.size();
+  const double z = graph.keyframes.back().pose.translation().z();
+  for (size_t i = n >= 3 ? n - 3 : 0; i + 1 < n; ++i)
+    if (std::abs(graph.keyframes[i].pose.translation().z() - z) > settle) return true;
+  return false;
+}
+
 bool HasLevels(const SGraph& graph) {
   return std::any_of(graph.keyframes.begin(), graph.keyframes.end(),
                      [&](const Keyframe& k) { return k.level != graph.keyframes.front().level; });
