@@ -130,11 +130,11 @@ bool GraphMatcher::WallsPreferAnother(const ProposalDecision& proposed,
   };
   // Another motion puts clearly more of the walls seen on BIM walls: evidence against `best`
   // that its score (which counts the walk through walls against the other) hides.
-  for (const Hypothesis& h : proposed.more_walls)
-    if (!same(h)) {
-      const double rooms_best_walls = surfaces_.Explained(proposed.walls, best.pose, best.storey);
-      if (h.evidence >= rooms_best_walls + config_.proposal_margin) return true;
-    }
+  if (!proposed.more_walls.empty()) {
+    const double best_walls = surfaces_.Explained(proposed.walls, best.pose, best.storey);
+    for (const Hypothesis& h : proposed.more_walls)
+      if (!same(h) && h.evidence >= best_walls + config_.proposal_margin) return true;
+  }
   // The rooms' best is among the walls' best cluster: they agree (or the walls cannot tell).
   if (same(proposed.best)) return false;
   for (const Hypothesis& c : proposed.competitors)
