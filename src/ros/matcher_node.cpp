@@ -65,6 +65,7 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "proposal_crossing_penalty", c.proposal_crossing_penalty);
   ros_params::Read(pnh, "proposal_max_candidates", c.proposal_max_candidates);
   ros_params::Read(pnh, "proposal_cross_check", c.proposal_cross_check);
+  ros_params::Read(pnh, "proposal_cross_check_max_rooms", c.proposal_cross_check_max_rooms);
   ros_params::Read(pnh, "ambiguity_margin", c.ambiguity_margin);
   ros_params::Read(pnh, "doubt_centre_tolerance", c.doubt_centre_tolerance);
   ros_params::Read(pnh, "cluster_yaw_deg", c.cluster_yaw_deg);

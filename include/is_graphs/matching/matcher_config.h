@@ -75,6 +75,10 @@ struct MatcherConfig {
   // harsh campaign: a row of twin offices with one wall moved, another turned (seed 17 trial
   // 778), and a twin wing entered through an opening the plan lacks (seed 21 trial 769).
   bool proposal_cross_check{true};
+  // ... only for an answer pairing at most this many S-rooms: the proposals cost 10-100 ms on
+  // many walls (bench_matching: 20 S-rooms of 200 A-rooms, 17 -> 123 ms cold with every answer
+  // checked), and every wrong UNIQUE the campaigns found paired 2-4 rooms.
+  int proposal_cross_check_max_rooms{5};
   // --- decision ---
   double ambiguity_margin{0.4};      // hypotheses scoring within this of the best compete
   double cluster_yaw_deg{3.0};       // hypotheses closer than this (and cluster_translation)

@@ -264,10 +264,12 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
   // where the walls clearly prefer another motion, the two kinds of evidence disagree and
   // neither is taken (AMBIGUOUS, the walls' best its competitor).
   // Checked once per motion: a UNIQUE answer of the motion checked last is not checked again
-  // (the proposals cost 5-10x the rooms' matching; the merger watches a localized motion).
+  // (the proposals cost 5-100x the rooms' matching; the merger watches a localized motion);
+  // and only where few rooms are paired (proposal_cross_check_max_rooms).
   std::optional<ProposalDecision> walls_view;
   if (decision.status == MatchStatus::kUnique && config_.proposals &&
       config_.proposal_cross_check &&
+      hypotheses[decision.best].rooms <= config_.proposal_cross_check_max_rooms &&
       !(last_checked_ &&
         SameMotion(*last_checked_, hypotheses[decision.best].pose, s_points, config_))) {
     walls_view = Propose(graph, evidence, hypotheses, /*hypotheses_if_too_many=*/true);

@@ -67,6 +67,8 @@ std::string MatcherConfig::Validate() const {
       {"deviation_max_offset", deviation_max_offset, 0.0, 5.0, true},
       {"deviation_max_angle_deg", deviation_max_angle_deg, 0.0, 45.0, true},
       {"stair_height_tolerance", stair_height_tolerance, 0.0, 100.0, true},
+      {"proposal_cross_check_max_rooms", static_cast<double>(proposal_cross_check_max_rooms), 1.0,
+       1e6, false},
   };
   for (const auto& f : fields) {
     const std::string error = Check(f.name, f.value, f.lo, f.hi, f.lo_open);
