@@ -205,7 +205,7 @@ def evaluate_outputs(prefix):
             late = after(traj, t_loc)
             if late is not None and late.num_poses > 1:
                 r[method + "_after_localization"] = public(ape(truth, late))
-    r["_series"], r["_truth"] = series, truth
+    r["_series"], r["_truth"], r["_est"], r["_odom"] = series, truth, est, odom
     return r
 
 
@@ -222,7 +222,7 @@ def evaluate_scenario(name, yaml_path, bag, note, replay, out_dir):
     graph = agraph_json(building)
     with open(graph) as f:
         storeys = json.load(f).get("storeys", [])
-    est, odom = read_tum(prefix + ".pose_bim.tum"), read_tum(prefix + ".odom.tum")
+    est, odom = r["_est"], r["_odom"]
     if storeys and est is not None:
         truth = r["_truth"]
         r["storeys"] = per_storey(storeys, truth.timestamps, truth.positions_xyz, est.timestamps,
