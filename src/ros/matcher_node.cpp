@@ -54,6 +54,8 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "sight_door_margin", c.sight_door_margin);
   ros_params::Read(pnh, "surface_min_length", c.surface_min_length);
   ros_params::Read(pnh, "surface_min_height", c.surface_min_height);
+  ros_params::Read(pnh, "outside_penalty", c.outside_penalty);
+  ros_params::Read(pnh, "outside_margin", c.outside_margin);
   ros_params::Read(pnh, "door_margin", c.door_margin);
   ros_params::Read(pnh, "max_path_step", c.max_path_step);
   ros_params::Read(pnh, "proposals", c.proposals);

@@ -32,11 +32,18 @@ struct PairEvaluation {
   double rms{0.0};
   std::vector<std::pair<int, int>> surfaces;  // (S-plane index, A-plane index) in the descriptors
   std::vector<double> residuals;              // per surface pair [m]
+  // A full-rank pair whose S-centre missed the A-centre: all S-planes but one paired, two of
+  // them facing each other, and the one left standing inside the A-room (a stair's side, a
+  // cabinet or a partition not in the plan taken for a bound of the room). Its S-centre is then
+  // no point correspondence.
+  bool centre_off{false};
 };
 
 /// Evaluates S-room `s` against A-room `a` under `pose` (bim_T_map). With `full_rank` the moved
-/// S-centre must lie within the centre tolerance of the A-centre, otherwise (a corridor, or a
-/// room whose planes are all parallel) within the tolerance of the A-room's footprint.
+/// S-centre must lie within the centre tolerance of the A-centre (or, `centre_off`, inside the
+/// A-room with one S-plane inside it unpaired and at least three paired, two facing each
+/// other), otherwise (a corridor, or a room whose planes are all parallel) within the tolerance
+/// of the A-room's footprint.
 PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, const Pose2& pose,
                             bool full_rank, const EvaluationTolerances& tolerances);
 
@@ -48,17 +55,21 @@ struct RoomCandidate {
   bool full_rank{false};  // the surfaces fix the motion; else free along `axis` (in B)
   Eigen::Vector2d axis{Eigen::Vector2d::UnitX()};
   double quality{0.0};
+  bool centre_off{false};  // paired through its planes only (PairEvaluation::centre_off)
 };
 
 /// The local candidates of one S-room against every A-room: yaws from pairing an anchor S-plane
 /// with each A-surface at the same distance from the centre (no blind permutations), surfaces
 /// paired under each yaw and pruned by pairwise point-normal consistency, the motion fitted,
-/// the pair evaluated. At most one candidate per A-room and yaw.
+/// the pair evaluated. Where that fails for a room of four or more paired planes, each pair is
+/// left out in turn and the motion fitted to the others (no centre prior): one plane that is
+/// not the room's bound must not hide the room. At most one candidate per A-room and yaw.
 std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s_index,
                                                   const std::vector<RoomDescriptor>& a_rooms,
                                                   const MatcherConfig& config);
 
-/// The correspondence of a candidate for RoomPairConsistency.
+/// The correspondence of a candidate for RoomPairConsistency (a `centre_off` one pairs its
+/// S-centre with where its own motion puts it, not with the A-centre).
 RoomCorrespondence ToCorrespondence(const RoomCandidate& c, const RoomDescriptor& s,
                                     const RoomDescriptor& a);
 

@@ -113,6 +113,9 @@ class GraphMatcher {
     std::vector<WallSegment> loose;   // the loose wall planes (LooseWalls)
     std::vector<SeenWall> seen;       // ... with the keyframes that observed them
     std::vector<SDoorwayView> doors;  // the doorways walked through
+    // Whether the loose planes outside the building count against a hypothesis (Match weighs
+    // them only while the best puts none outside).
+    bool outside{true};
   };
   /// Step 3: scores `hypotheses` on their pairs and the `evidence`.
   void Score(std::vector<Hypothesis>& hypotheses, const Evidence& evidence,

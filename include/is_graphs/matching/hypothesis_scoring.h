@@ -29,6 +29,8 @@ struct Hypothesis {
   std::vector<MemberPair> members;
   double affinity{0.0};  // GlobalAffinity of the members
   double evidence{0.0};  // weighted SurfaceEvidence of the loose wall planes + DoorwayEvidence
+                         // - outside
+  double outside{0.0};   // outside_penalty x SurfaceEvidence::Outside of the loose planes
   int crossings{-1};     // walls the walked path crosses under `pose`; -1: not evaluated
   double hidden{0.0};    // sight_penalty x HiddenWalls of the loose planes (with crossings)
   // The bound on the lazy evidence still in `score` in its place (with crossings = -1: not

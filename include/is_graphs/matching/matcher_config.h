@@ -29,6 +29,12 @@ struct MatcherConfig {
   double surface_full_length{2.0};  // a plane this long counts fully, a shorter one in proportion
   double surface_min_length{1.0};   // shorter planes (or lower ones) are not taken for walls
   double surface_min_height{1.9};
+  // Loose wall planes that lie, under a hypothesis, beyond the storey's outline (the convex
+  // hull of its wall-surfaces) by more than outside_margin: walls the robot could only have
+  // seen outside the building. Each costs up to outside_penalty (x min(1, length /
+  // surface_full_length) x its share outside); 0: not used.
+  double outside_penalty{0.1};
+  double outside_margin{1.0};
   // Doorways the robot walked through (S-Graph doorways) lying at the BIM's doorways under a
   // hypothesis (DoorwayEvidence): each adds up to doorway_evidence_weight; 0: not used.
   double doorway_evidence_weight{0.2};

@@ -45,6 +45,12 @@ class SurfaceEvidence {
   double Explained(const std::vector<WallSegment>& planes, const Pose2& pose, int storey) const;
   /// The most Explained can give `planes` under any motion: Σ min(1, length / full length).
   double Bound(const std::vector<WallSegment>& planes) const;
+  /// Σ over `planes` of min(1, length / surface_full_length) x the share of the plane lying
+  /// beyond the outline of `storey` (the convex hull of its wall-surfaces) by more than
+  /// outside_margin under `pose`: walls that, under it, stand outside the building. Walls built
+  /// off the plan inside it (moved, extra partitions) never do; under a half-turned twin a
+  /// corridor seen to its far end can. 0 for a storey of fewer than three surface ends.
+  double Outside(const std::vector<WallSegment>& planes, const Pose2& pose, int storey) const;
 
   /// An A-surface a plane lies along (facing the same way, within offset_tolerance).
   struct Along {
@@ -67,11 +73,15 @@ class SurfaceEvidence {
   struct Storey {
     std::vector<Surface> surfaces;
     std::unordered_map<long long, std::vector<int>> cells;  // 1 m cell -> surface indices
+    // The outline's edges (counter-clockwise convex hull): a point, each edge's outward unit
+    // normal and offset.
+    std::vector<std::pair<Eigen::Vector2d, double>> outline;
   };
 
   double cos_angle_{1.0};
   double offset_tolerance_{0.3};
   double full_length_{2.0};
+  double outside_margin_{1.0};
   std::unordered_map<int, Storey> storeys_;
 };
 

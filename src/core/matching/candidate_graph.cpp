@@ -9,6 +9,8 @@ namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kSpanAngle = 20.0 * kDegToRad;  // planes this far apart fix a translation
+// A plane standing in a room (centre_off) spans at most this share of the room's width.
+constexpr double kMaxSpan = 0.8;
 
 int NeededPlanes(int n, double fraction) {
   return std::max(std::min(n, 2), static_cast<int>(std::ceil(fraction * n - 1e-9)));
@@ -52,6 +54,35 @@ void PruneInconsistent(const RoomDescriptor& s, const RoomDescriptor& a, double 
   pairs = std::move(kept);
 }
 
+/// For a pair whose centres disagree: the S-planes all paired (`surfaces`) but one, at least
+/// three, two of them facing each other across the one left over, which spans at most kMaxSpan
+/// of the width between them and lies inside the A-room by more than `offset` under `pose` (its
+/// foot, the point nearest the S-centre): a plane standing in the room, not a wall beyond it or
+/// across it.
+bool OnePlaneInside(const RoomDescriptor& s, const RoomDescriptor& a, const Pose2& pose,
+                    const std::vector<std::pair<int, int>>& surfaces, double min_cos,
+                    double offset) {
+  const int n = static_cast<int>(s.planes.size());
+  if (static_cast<int>(surfaces.size()) != n - 1 || n - 1 < 3) return false;
+  std::vector<char> paired(n, 0);
+  for (const auto& [i, j] : surfaces) paired[i] = 1;
+  const int left = static_cast<int>(std::find(paired.begin(), paired.end(), 0) - paired.begin());
+  const PlaneFeature& plane = s.planes[left];
+  // Two paired planes facing each other across it (normals at right angles to its own): the
+  // room's width along the plane, which the plane must not span (a wall across the whole room
+  // bounds a smaller room: another room, not this one with a plane standing in it).
+  const double cos_span = std::cos(kSpanAngle);
+  double width = 0.0;
+  for (size_t x = 0; x < surfaces.size(); ++x)
+    for (size_t y = x + 1; y < surfaces.size(); ++y) {
+      const PlaneFeature &p = s.planes[surfaces[x].first], &q = s.planes[surfaces[y].first];
+      if (p.normal.dot(q.normal) <= -min_cos && std::abs(p.normal.dot(plane.normal)) < cos_span)
+        width = std::max(width, std::abs(p.d + q.d));
+    }
+  if (width <= 0.0 || plane.length > kMaxSpan * width) return false;
+  return SignedDistanceToPolygon(a.polygon, pose.Apply(Foot(s, left).point)) < -offset;
+}
+
 }  // namespace
 
 EvaluationTolerances EvaluationTolerances::From(const MatcherConfig& config, double slack) {
@@ -70,8 +101,16 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   const double min_cos = std::cos(tol.angle_rad);
   const Eigen::Matrix2d rot = pose.R();  // once: the loops below turn every plane
   const Eigen::Vector2d centre_b = rot * s.centre + pose.t;
+  // Full rank: the centres agree, or the S-centre at least lies in the A-room (checked for
+  // centre_off once the planes are paired).
+  bool centre_off = false;
   if (full_rank) {
-    if ((centre_b - a.centre).norm() > tol.centre) return out;
+    if ((centre_b - a.centre).norm() > tol.centre) {
+      if (s.planes.size() < 4 || a.polygon.empty() ||
+          SignedDistanceToPolygon(a.polygon, centre_b) > 0.0)
+        return out;
+      centre_off = true;
+    }
   } else if (!a.polygon.empty() && SignedDistanceToPolygon(a.polygon, centre_b) > tol.centre) {
     return out;
   }
@@ -102,6 +141,7 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   const int n = static_cast<int>(s.planes.size());
   const int matched = static_cast<int>(out.surfaces.size());
   if (matched == 0 || matched < NeededPlanes(n, tol.min_plane_fraction)) return out;
+  if (centre_off && !OnePlaneInside(s, a, pose, out.surfaces, min_cos, tol.offset)) return out;
 
   // Coverage of the A-room by what was seen: all its surfaces for a closed room, the ones
   // parallel to the seen planes for a corridor (its ends are not part of it).
@@ -123,6 +163,7 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   fit /= matched;
   out.quality = (static_cast<double>(matched) / n) * (0.5 + 0.5 * coverage) * fit;
   out.ok = true;
+  out.centre_off = centre_off;
   return out;
 }
 
@@ -154,6 +195,7 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
   std::vector<PlaneCorrespondence> planes;
   std::vector<PlaneFeature> matched_s;
   std::vector<PointCorrespondence> centre(1);
+  std::vector<RoomCandidate> found;  // of one A-room and yaw
   for (size_t ai = 0; ai < a_rooms.size(); ++ai) {
     const RoomDescriptor& a = a_rooms[ai];
     // Structural pre-check (cheap): enough S-planes have an A-surface at their distance.
@@ -203,40 +245,67 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
       PruneInconsistent(s, a, 2.0 * tol.angle_rad, 2.0 * r_tol, pairs);
       if (static_cast<int>(pairs.size()) < needed) continue;
 
-      planes.clear();
-      matched_s.clear();
-      for (const auto& [i, j] : pairs) {
-        planes.push_back(
-            {s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d, a.centre});
-        matched_s.push_back(s.planes[i]);
+      // The motion fitted to the pairs but `skip` (-1: all of them) and the pair evaluated.
+      auto fit_pairs = [&](int skip, RoomCandidate* c) {
+        planes.clear();
+        matched_s.clear();
+        for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+          if (k == skip) continue;
+          const auto [i, j] = pairs[k];
+          planes.push_back(
+              {s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d, a.centre});
+          matched_s.push_back(s.planes[i]);
+        }
+        const bool full_rank =
+            s.kind == RoomKind::kRoom && PlanesSpanTwoDirections(matched_s, kSpanAngle);
+        if (skip >= 0 && !full_rank) return false;
+        // The centre as a prior: firm for a room, only nominal along a corridor's axis and
+        // where a pair is left out (the plane that moved the S-centre).
+        centre[0] = {s.centre, a.centre, full_rank && skip < 0 ? config.centre_tolerance : 100.0};
+        const RigidFit fit = FitYawTranslation(planes, centre);
+        if (AngleDistance(fit.pose.yaw, yaw) > 2.0 * tol.angle_rad) return false;
+        c->s_room = s_index;
+        c->a_room = static_cast<int>(ai);
+        c->pose = fit.pose;
+        c->full_rank = full_rank;
+        const Eigen::Vector2d n0 = c->pose.Rotate(matched_s.front().normal);
+        c->axis = Eigen::Vector2d(-n0.y(), n0.x());
+        const PairEvaluation eval = EvaluatePair(s, a, c->pose, full_rank, tol);
+        c->quality = eval.quality;
+        c->centre_off = eval.centre_off;
+        // A pair left out must be a plane standing in the room (a wall across it, 1 m off the
+        // A-room's, bounds another room: the tower's entrance hall under the larger office
+        // above it), unless every plane pairs under the motion without it.
+        return eval.ok && (skip < 0 || eval.surfaces.size() == s.planes.size() ||
+                           OnePlaneInside(s, a, c->pose, eval.surfaces, min_cos, tol.offset));
+      };
+      found.assign(1, RoomCandidate{});
+      if (!fit_pairs(-1, &found[0])) {
+        // One plane that is not the room's bound (paired with a wall it is not) pulls the fit:
+        // each pair left out in turn. Every variant that holds is kept: which plane stands in
+        // the room (a stair's side by the north wall, or one by the south wall under a motion
+        // 1.5 m along) the room alone may not tell; the rest of the evidence does, or the
+        // answer stays AMBIGUOUS.
+        const bool try_variants = found[0].full_rank && pairs.size() >= 4;
+        found.clear();
+        RoomCandidate variant;
+        for (int skip = 0; try_variants && skip < static_cast<int>(pairs.size()); ++skip)
+          if (fit_pairs(skip, &variant)) found.push_back(variant);
       }
-      const bool full_rank =
-          s.kind == RoomKind::kRoom && PlanesSpanTwoDirections(matched_s, kSpanAngle);
-      // The centre as a prior: firm for a room, only nominal along a corridor's axis.
-      centre[0] = {s.centre, a.centre, full_rank ? config.centre_tolerance : 100.0};
-      RigidFit fit = FitYawTranslation(planes, centre);
-      if (AngleDistance(fit.pose.yaw, yaw) > 2.0 * tol.angle_rad) continue;
-
-      RoomCandidate c;
-      c.s_room = s_index;
-      c.a_room = static_cast<int>(ai);
-      c.pose = fit.pose;
-      c.full_rank = full_rank;
-      const Eigen::Vector2d n0 = c.pose.Rotate(matched_s.front().normal);
-      c.axis = Eigen::Vector2d(-n0.y(), n0.x());
-      const PairEvaluation eval = EvaluatePair(s, a, c.pose, full_rank, tol);
-      if (!eval.ok) continue;
-      c.quality = eval.quality;
-      // One candidate per A-room and yaw (the best).
-      bool merged = false;
-      for (size_t k = first_of_room; k < out.size(); ++k) {
-        if (AngleDistance(out[k].pose.yaw, c.pose.yaw) < 2.0 * kDegToRad) {
+      // One candidate per A-room and motion (the best): same yaw, and same place but for
+      // centre_off variants.
+      for (const RoomCandidate& c : found) {
+        bool merged = false;
+        for (size_t k = first_of_room; k < out.size() && !merged; ++k) {
+          if (AngleDistance(out[k].pose.yaw, c.pose.yaw) >= 2.0 * kDegToRad) continue;
+          if ((c.centre_off || out[k].centre_off) &&
+              (out[k].pose.t - c.pose.t).norm() > config.centre_tolerance)
+            continue;
           if (c.quality > out[k].quality) out[k] = c;
           merged = true;
-          break;
         }
+        if (!merged) out.push_back(c);
       }
-      if (!merged) out.push_back(c);
     }
   }
   return out;
@@ -246,7 +315,7 @@ RoomCorrespondence ToCorrespondence(const RoomCandidate& c, const RoomDescriptor
                                     const RoomDescriptor& a) {
   RoomCorrespondence out;
   out.s_centre = s.centre;
-  out.a_centre = a.centre;
+  out.a_centre = c.centre_off ? c.pose.Apply(s.centre) : a.centre;
   out.yaw = c.pose.yaw;
   out.axis_free = !c.full_rank;
   out.axis_b = c.axis;

@@ -46,7 +46,8 @@ CandidateIndex::CandidateIndex(const std::vector<std::vector<RoomCandidate>>& ca
     std::vector<int> full;
     for (int k = 0; k < room.size; ++k) {
       const RoomCandidate& c = candidates[i][k];
-      if (c.full_rank)
+      // A centre_off candidate's A-centre is not where its S-centre goes: looked at always.
+      if (c.full_rank && !c.centre_off)
         a_of.push_back(c.a_room), full.push_back(k);
       else
         room.always.push_back(k);

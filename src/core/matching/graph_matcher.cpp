@@ -252,8 +252,16 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
   std::vector<Eigen::Vector2d> s_points;
   for (const auto& s : s_rooms) s_points.push_back(s.centre);
 
-  // 4. Decision; 5. a UNIQUE one doubted.
+  // 4. Decision; 5. a UNIQUE one doubted. Walls outside the building count against the others
+  // only for a best that puts none there itself: a best they contradict too is decided on the
+  // rest of the evidence alone (the walls outside may be the truth's: seen through a window, an
+  // annex not in the plan; and dropping a competitor for them must not leave a wrong best).
   Decision decision = Decide(hypotheses, s_points, static_cast<int>(s_rooms.size()), config_);
+  if (decision.best >= 0 && hypotheses[decision.best].outside > 0.0) {
+    evidence.outside = false;
+    Score(hypotheses, evidence, s_rooms);
+    decision = Decide(hypotheses, s_points, static_cast<int>(s_rooms.size()), config_);
+  }
   stats_.hypotheses = static_cast<int>(hypotheses.size());
   std::optional<Hypothesis> doubt;
   if (decision.status == MatchStatus::kUnique && doubter_) {
@@ -343,9 +351,15 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
 
 std::vector<MatchPair> GraphMatcher::RoomPairs(const Hypothesis& h,
                                                const std::vector<RoomDescriptor>& s_rooms) const {
+  // Only pairs whose centres correspond as the merge takes them: a room's centre to the
+  // A-centre, a corridor's across its axis. Not a room paired through its planes only
+  // (centre_off: a plane standing in it moved the S-centre), nor an S-Graph room paired along
+  // one direction only (its centre free along it: a corridor's end taken for a room's wall).
+  // Their surfaces are paired all the same.
   std::vector<MatchPair> out;
   for (const auto& m : h.members)
-    out.push_back({a_rooms_[m.a_room].id, s_rooms[m.s_room].id, m.evaluation.quality});
+    if (!m.evaluation.centre_off && (m.full_rank || s_rooms[m.s_room].kind == RoomKind::kCorridor))
+      out.push_back({a_rooms_[m.a_room].id, s_rooms[m.s_room].id, m.evaluation.quality});
   std::sort(out.begin(), out.end(),
             [](const MatchPair& x, const MatchPair& y) { return x.s_id < y.s_id; });
   return out;
@@ -510,14 +524,22 @@ void GraphMatcher::Score(std::vector<Hypothesis>& hypotheses, const Evidence& ev
                          const std::vector<RoomDescriptor>& s_rooms) const {
   // 3. Scores: the pairs' affinity, plus the loose wall planes and the walked-through doorways
   // the BIM explains, less the walls the walked path crosses and the loose planes it could not
-  // have seen under each motion. The doorways (each pair adds at most doorway_evidence_weight),
-  // the crossings and the sight lines only for the hypotheses that can still matter.
+  // have seen under each motion and those it puts outside the building. The doorways (each pair
+  // adds at most doorway_evidence_weight), the crossings and the sight lines only for the
+  // hypotheses that can still matter.
+  const bool outside = evidence.outside && config_.outside_penalty > 0.0;
+  for (auto& h : hypotheses)
+    h.outside = outside && !h.members.empty() && !evidence.loose.empty()
+                    ? config_.outside_penalty * surfaces_.Outside(evidence.loose, h.pose, h.storey)
+                    : 0.0;
   ScoreHypotheses(
       hypotheses,
       [&](const Hypothesis& h) {
-        return evidence.loose.empty() ? 0.0
-                                      : config_.surface_evidence_weight *
-                                            surfaces_.Explained(evidence.loose, h.pose, h.storey);
+        return evidence.loose.empty()
+                   ? 0.0
+                   : config_.surface_evidence_weight *
+                             surfaces_.Explained(evidence.loose, h.pose, h.storey) -
+                         h.outside;
       },
       [&](const Hypothesis& h) { return DoorsExplained(h, evidence, s_rooms); },
       DoorsBound(evidence),

@@ -78,7 +78,9 @@ RigidFit FitMembers(const std::vector<MemberPair>& members,
     for (const auto& [i, j] : m.evaluation.surfaces)
       planes.push_back(
           {s.planes[i].normal, s.planes[i].d, a.planes[j].normal, a.planes[j].d, a.centre});
-    if (m.full_rank) points.push_back({s.centre, a.centre, config.centre_tolerance});
+    // A pair whose S-centre a plane standing in the room moved: its planes alone.
+    if (m.full_rank && !m.evaluation.centre_off)
+      points.push_back({s.centre, a.centre, config.centre_tolerance});
   }
   return FitYawTranslation(planes, points);
 }

@@ -40,6 +40,8 @@ std::string MatcherConfig::Validate() const {
       {"surface_full_length", surface_full_length, 0.0, 100.0, true},
       {"surface_min_length", surface_min_length, 0.0, 100.0, false},
       {"surface_min_height", surface_min_height, 0.0, 100.0, false},
+      {"outside_penalty", outside_penalty, 0.0, 10.0, false},
+      {"outside_margin", outside_margin, 0.0, 100.0, false},
       {"doorway_evidence_weight", doorway_evidence_weight, 0.0, 10.0, false},
       {"doorway_tolerance", doorway_tolerance, 0.0, 5.0, true},
       {"doorway_width_tolerance", doorway_width_tolerance, 0.0, 5.0, true},

@@ -18,6 +18,30 @@ constexpr double kEndSlack = 0.2;    // m an A-surface's ends are extended by (n
 long long CellKey(long long ix, long long iy) { return (ix << 32) ^ (iy & 0xffffffffLL); }
 long long CellOf(double v) { return static_cast<long long>(std::floor(v / kCell)); }
 
+double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+/// The convex hull of `points`, counter-clockwise (Andrew's monotone chain).
+std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points) {
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& x, const Eigen::Vector2d& y) {
+    return x.x() < y.x() || (x.x() == y.x() && x.y() < y.y());
+  });
+  if (points.size() < 3) return {};
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  size_t k = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && Cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull.size() >= 3 ? hull : std::vector<Eigen::Vector2d>{};
+}
+
 }  // namespace
 
 std::vector<WallSegment> WallSegments(const sgraph::SGraph& graph, const MatcherConfig& config) {
@@ -41,7 +65,8 @@ std::vector<WallSegment> WallSegments(const sgraph::SGraph& graph, const Matcher
 SurfaceEvidence::SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfig& config)
     : cos_angle_(std::cos(config.angle_tolerance_deg * M_PI / 180.0)),
       offset_tolerance_(config.offset_tolerance),
-      full_length_(config.surface_full_length) {
+      full_length_(config.surface_full_length),
+      outside_margin_(config.outside_margin) {
   for (const auto& s : graph.surfaces) {
     const Eigen::Vector2d n = s.plane.normal.head<2>();
     if (!s.start.allFinite() || !s.end.allFinite() || !n.allFinite() || n.norm() < 0.5 ||
@@ -62,6 +87,17 @@ SurfaceEvidence::SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfi
       for (long long ix = CellOf(lo.x()); ix <= CellOf(hi.x()); ++ix)
         for (long long iy = CellOf(lo.y()); iy <= CellOf(hi.y()); ++iy)
           storey.cells[CellKey(ix, iy)].push_back(index);
+    }
+  }
+  for (auto& [id, storey] : storeys_) {
+    std::vector<Eigen::Vector2d> ends;
+    for (const Surface& s : storey.surfaces) ends.push_back(s.a), ends.push_back(s.b);
+    const std::vector<Eigen::Vector2d> hull = ConvexHull(std::move(ends));
+    for (size_t i = 0; i < hull.size(); ++i) {
+      const Eigen::Vector2d edge = hull[(i + 1) % hull.size()] - hull[i];
+      if (edge.norm() < 1e-9) continue;
+      const Eigen::Vector2d out = Eigen::Vector2d(edge.y(), -edge.x()).normalized();
+      storey.outline.emplace_back(out, out.dot(hull[i]));
     }
   }
 }
@@ -127,6 +163,30 @@ double SurfaceEvidence::Explained(const std::vector<WallSegment>& planes, const 
 double SurfaceEvidence::Bound(const std::vector<WallSegment>& planes) const {
   double sum = 0.0;
   for (const WallSegment& p : planes) sum += std::min(1.0, p.length / full_length_);
+  return sum;
+}
+
+double SurfaceEvidence::Outside(const std::vector<WallSegment>& planes, const Pose2& pose,
+                                int storey) const {
+  const auto found = storeys_.find(storey);
+  if (found == storeys_.end() || found->second.outline.empty()) return 0.0;
+  const auto& outline = found->second.outline;
+  const Eigen::Matrix2d rot = pose.R();
+  double sum = 0.0;
+  for (const WallSegment& p : planes) {
+    if (p.length <= 0.0) continue;
+    const Eigen::Vector2d a = rot * p.a + pose.t, b = rot * p.b + pose.t;
+    const int samples = std::max(1, static_cast<int>(std::ceil(p.length / kSampleStep)));
+    int outside = 0;
+    for (int i = 0; i < samples; ++i) {
+      const Eigen::Vector2d q = a + (b - a) * ((i + 0.5) / samples);
+      // Beyond an edge's line by more than the margin: farther than that from the hull.
+      outside += std::any_of(outline.begin(), outline.end(), [&](const auto& edge) {
+        return edge.first.dot(q) - edge.second > outside_margin_;
+      });
+    }
+    sum += std::min(1.0, p.length / full_length_) * outside / samples;
+  }
   return sum;
 }
 
