@@ -68,6 +68,8 @@ bench-matching: build
 # bags/long/L1_large_hour.yaml (the D6 walk looped for 60 min) straight into the pipeline and
 # prints per-10-minute p50/p99 of optimization, matching, merging, the pipeline's real-time
 # factor and peak RSS (about 20-30 min). LONG_SCENARIO=, LONG_DURATION=s, LONG_WINDOW=s.
+# The multi-storey hour (the tower, up two flights and back down, whole building):
+# LONG_SCENARIO=bags/long/L2_tower_hour.yaml.
 bench-long: build
 	@nice .ws/devel/lib/is_graphs/bench_long $${LONG_SCENARIO:-bags/long/L1_large_hour.yaml} \
 	  --root $(CURDIR) $${LONG_DURATION:+--duration $$LONG_DURATION} --window $${LONG_WINDOW:-600}

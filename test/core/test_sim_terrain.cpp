@@ -3,6 +3,7 @@
 // odometry's height error per climb.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -11,6 +12,7 @@
 #include "is_graphs/sim/odometry_drift.h"
 #include "is_graphs/sim/simulation.h"
 #include "is_graphs/sim/terrain.h"
+#include "is_graphs/sim/trajectory.h"
 
 namespace is_graphs {
 namespace sim {
@@ -95,6 +97,71 @@ TEST(SimTerrain, FlightsAreWalkedAtTheStairsSpeed) {
   EXPECT_DOUBLE_EQ(climbed.PathLength(), fast.PathLength());
   // 4 m at 0.3 instead of 0.6 m/s: 6.7 s more at cruise, a little less with the ramps.
   EXPECT_GT(climbed.Duration(), fast.Duration() + 5.5);
+}
+
+// A looped route (trajectory.loop, as bags/long/L2_tower_hour.yaml walks the tower for an hour)
+// goes back DOWN the flight it climbed: the ground falls tread by tread, the nose points down,
+// the flight is walked at the stairs speed both ways, and the loop ends on the start's floor.
+TEST(SimTerrain, ALoopWalksTheFlightBackDownToTheStart) {
+  const SceneMesh mesh = Stair();
+  const auto scene = std::move(EmbreeScene::Create(mesh)).value();
+  TrajectoryConfig c;
+  c.waypoints = {{}};
+  c.pause = 0.5;
+  c.speed = 0.6;
+  c.loop = true;
+  const Eigen::Vector3d start(1.0, 0.0, 0.0);
+  const std::vector<PlanarWaypoint> route = {{{3.5, 0.0}, std::nullopt, false},
+                                             {{7.5, 0.0}, std::nullopt, false},
+                                             {{10.0, 0.0}, std::nullopt, false}};
+  // As BuildMotion does: the ground under the looped path, then the flights walked slower.
+  const TerrainConfig tc;
+  const Trajectory fast = std::move(Trajectory::Build(start, route, c, 60.0)).value();
+  const Result<TerrainProfile> fast_ground = TerrainProfile::Build(*scene, fast, 0.0, tc);
+  ASSERT_TRUE(fast_ground.ok()) << fast_ground.error();
+  const LegSpeed slow = StairLegSpeed(fast, fast_ground.value(), tc, 0.6, 0.3);
+  c.loop = false;
+  const double one_way =
+      std::move(Trajectory::Build(start, route, c, 0.0, slow)).value().Duration();
+  c.loop = true;
+  const Trajectory walk =
+      std::move(Trajectory::Build(start, route, c, 2.5 * one_way, slow)).value();
+  const Result<TerrainProfile> t = TerrainProfile::Build(*scene, walk, 0.0, tc);
+  ASSERT_TRUE(t.ok()) << t.error();
+  // 9 m out (x = 1 to 10, the flight from x = 4 to 7), then back: on the way back at x the path
+  // has walked there + 10 - x, and the ground falls tread by tread.
+  const double there = 9.0;
+  auto back_at = [&](double x) { return t.value().GroundAt(there + 10.0 - x); };
+  EXPECT_NEAR(t.value().GroundAt(there - 1.0), 1.5, 1e-4);        // x = 9 out: the upper floor
+  EXPECT_NEAR(back_at(7.5), 1.5, 1e-4);                           // the upper floor
+  EXPECT_NEAR(back_at(6.55), 1.5 - kRise, 1e-4);                  // the second tread down
+  EXPECT_NEAR(back_at(4.15), kRise, 1e-4);                        // the bottom tread
+  EXPECT_NEAR(back_at(3.5), 0.0, 1e-4);                           // the lower floor
+  EXPECT_NEAR(t.value().GroundAt(2.0 * there - 0.5), 0.0, 1e-4);  // x = 1.5
+  GaitConfig gait;
+  gait.bob_amplitude = 0.0;
+  gait.pitch_amplitude_deg = 0.0;
+  gait.roll_amplitude_deg = 0.0;
+  RobotMotion motion(walk, gait, 0.0, t.value());
+  const double z0 = motion.BasePose(0.0).translation().z();
+  double back = -1.0, highest = z0, nose_down = 0.0;
+  for (double s = 0.0; s < motion.Duration() && back < 0.0; s += 0.05) {
+    const Eigen::Isometry3d pose = motion.BasePose(s);
+    highest = std::max(highest, pose.translation().z());
+    if (s > one_way) {
+      nose_down = std::min(nose_down, std::asin(pose.linear().col(0).z()));
+      if ((pose.translation().head<2>() - start.head<2>()).norm() < 1e-6) back = s;
+    }
+  }
+  ASSERT_GT(back, one_way) << "the loop came back to the start";
+  EXPECT_NEAR(highest - z0, 1.5, 1e-3);
+  EXPECT_NEAR(motion.BasePose(back).translation().z(), z0, 1e-3) << "on the start's floor again";
+  EXPECT_NEAR(nose_down, -std::atan2(kRise, kRun), 0.12) << "the nose dips by the flight's slope";
+  // The way back takes as long as the way there (the flight at the stairs speed both ways, not
+  // at cruise), plus the turn about at the far end, less the pause at the start.
+  const double turn_about = TrapezoidDuration(M_PI, c.turn_rate_deg * M_PI / 180.0,
+                                              c.turn_acceleration_deg * M_PI / 180.0);
+  EXPECT_NEAR(back - one_way, one_way + turn_about - c.pause, 0.1);
 }
 
 TEST(SimTerrain, ADropOrAWallIsNamed) {

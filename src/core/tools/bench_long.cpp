@@ -3,9 +3,11 @@
 // bag is 2.9 GB). Per time window of the run (default 10 min): the p50 / p99 of the S-Graph
 // optimization, the matching and the merging, the pipeline's real-time factor (the time spent in
 // the pipeline's calls only, the ray casting excluded), the peak RSS so far (getrusage), the x-y
-// error of the published BIM-frame pose against the truth, and the most keyframes one S-Graph
-// optimization had (moved or held: BackendConfig::window_keyframes). Prints a Markdown table,
-// a row as each window ends.
+// and z errors of the published BIM-frame pose against the truth, the share of published poses
+// on the truth's storey (agraph::StoreyAtHeight of each; a multi-storey run), and the most
+// keyframes one S-Graph optimization had (moved or held: BackendConfig::window_keyframes).
+// Prints a Markdown table, a row as each window ends. The localizer gets the scenario's
+// `localizer_storey` ("": the whole building), else its `storey`, as make_bags / evaluate do.
 //
 // The ray casting (about 80 ms a scan here, more than the pipeline) runs on a second thread
 // while the pipeline handles the previous scan (--serial: not; slower, for a busy machine).
@@ -21,6 +23,8 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,7 +56,8 @@ double PeakRssMib() {
 struct Window {
   Window(double from, double to) : start(from), end(to) {}
   double start{0.0}, end{0.0};
-  std::vector<double> optimization, matching, merging, errors;
+  std::vector<double> optimization, matching, merging, errors, z_errors;
+  std::vector<double> right_storey;       // 1 where the pose's storey is the truth's, else 0
   std::vector<double> problem_keyframes;  // in each S-Graph optimization (moved or held)
   double pipeline_seconds{0.0};
   int keyframes{0};
@@ -70,10 +75,15 @@ void PrintRow(const std::string& label, const Window& w) {
   double rms = 0.0;
   for (double e : w.errors) rms += e * e;
   rms = w.errors.empty() ? NAN : std::sqrt(rms / static_cast<double>(w.errors.size()));
-  std::printf("| %s | %d | %.0f | %s | %s | %s | %.1f× | %.0f | %.3f |\n", label.c_str(),
-              w.keyframes, Percentile(w.problem_keyframes, 1.0), Cell(w.optimization).c_str(),
-              Cell(w.matching).c_str(), Cell(w.merging).c_str(),
-              seconds / std::max(1e-9, w.pipeline_seconds), w.peak_rss_mib, rms);
+  double rms_z = 0.0, right = 0.0;
+  for (double e : w.z_errors) rms_z += e * e;
+  rms_z = w.z_errors.empty() ? NAN : std::sqrt(rms_z / static_cast<double>(w.z_errors.size()));
+  for (double r : w.right_storey) right += r;
+  right = w.right_storey.empty() ? NAN : 100.0 * right / static_cast<double>(w.right_storey.size());
+  std::printf("| %s | %d | %.0f | %s | %s | %s | %.1f× | %.0f | %.3f | %.3f | %.1f |\n",
+              label.c_str(), w.keyframes, Percentile(w.problem_keyframes, 1.0),
+              Cell(w.optimization).c_str(), Cell(w.matching).c_str(), Cell(w.merging).c_str(),
+              seconds / std::max(1e-9, w.pipeline_seconds), w.peak_rss_mib, rms, rms_z, right);
   std::fflush(stdout);
 }
 
@@ -99,9 +109,20 @@ class PipelineSink : public sim::SimulationSink {
     const auto t0 = Clock::now();
     const auto pose = pipeline_.AddOdometry(sim_.config.start_time + t, odometry.odom_T_base);
     windows_.back().pipeline_seconds += Seconds(t0);
-    if (pose)
-      windows_.back().errors.push_back(
-          (pose->translation() - truth.translation()).head<2>().norm());
+    if (pose) {
+      Window& w = windows_.back();
+      w.errors.push_back((pose->translation() - truth.translation()).head<2>().norm());
+      w.z_errors.push_back(std::abs(pose->translation().z() - truth.translation().z()));
+      const bool right = agraph::StoreyAtHeight(sim_.graph, pose->translation().z()) ==
+                         agraph::StoreyAtHeight(sim_.graph, truth.translation().z());
+      w.right_storey.push_back(right ? 1.0 : 0.0);
+      if (!right) {  // how far the truth was from a storey's boundary height (StoreyAtHeight's)
+        double nearest = INFINITY;
+        for (const auto& storey : sim_.graph.storeys)
+          nearest = std::min(nearest, std::abs(truth.translation().z() + 0.05 - storey.elevation));
+        wrong_storey_margin_ = std::max(wrong_storey_margin_, nearest);
+      }
+    }
   }
 
   void OnScan(const sim::LidarScan& scan, double publish_time) override {
@@ -126,6 +147,9 @@ class PipelineSink : public sim::SimulationSink {
     w.matching.insert(w.matching.end(), times.matching.begin() + m, times.matching.end());
     w.merging.insert(w.merging.end(), times.merging.begin() + g, times.merging.end());
   }
+
+  /// The most a pose on another storey than the truth's had the truth from a storey's boundary.
+  double wrong_storey_margin() const { return wrong_storey_margin_; }
 
   /// Closes (and prints) the last window.
   std::vector<Window>& Finish(double end) {
@@ -157,6 +181,7 @@ class PipelineSink : public sim::SimulationSink {
   const sim::Simulation& sim_;
   double window_, duration_;
   std::vector<Window> windows_;
+  double wrong_storey_margin_{0.0};
 };
 
 int Usage() {
@@ -201,18 +226,24 @@ int Run(int argc, char** argv) {
   if (const auto e = pipeline_config.Validate(); !e.empty())
     return std::cerr << "bench_long: " << e << "\n", 2;
   pipeline::LocalizationPipeline localization(pipeline_config);
-  // The storey the robot walks, as replay_pipeline's --storey gives it.
-  const auto building = agraph::SelectStorey(sim.graph, sim.storey);
+  // The storey the localizer is told, as replay_pipeline's --storey gives it: `localizer_storey`
+  // where the scenario has one ("": the whole building), else the storey the robot starts on.
+  const std::optional<std::string>& told = sim.config.localizer_storey;
+  const auto building = !told           ? agraph::SelectStorey(sim.graph, sim.storey)
+                        : told->empty() ? Result<agraph::AGraph>::Ok(sim.graph)
+                                        : agraph::SelectStorey(sim.graph, *told);
   if (!building.ok()) return std::cerr << "bench_long: " << building.error() << "\n", 2;
   if (const auto e = localization.SetAGraph(building.value()); !e.empty())
     return std::cerr << "bench_long: unusable A-Graph: " << e << "\n", 2;
 
-  std::cerr << "bench_long: " << yaml << ", " << duration << " s of simulated run\n";
+  std::cerr << "bench_long: " << yaml << ", " << duration << " s of simulated run, the localizer "
+            << (told && told->empty() ? "given the whole building (" : "given one storey (of ")
+            << sim.graph.storeys.size() << " storeys)\n";
   std::printf(
       "| run [min] | keyframes | optimized keyframes (max) | optimization p50 / p99 [ms] | "
       "matching p50 / p99 [ms] | merging p50 / p99 [ms] | pipeline RTF | peak RSS [MiB] | "
-      "x-y error RMS [m] |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+      "x-y error RMS [m] | z error RMS [m] | on the right storey [%%] |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   PipelineSink sink(localization, sim, window, duration);
   const auto start = Clock::now();
   sim::RunSimulation(sim, sink, pipelined);
@@ -222,7 +253,7 @@ int Run(int argc, char** argv) {
   for (const Window& w : windows) {
     using Series = std::vector<double> Window::*;
     for (Series v : {&Window::optimization, &Window::matching, &Window::merging, &Window::errors,
-                     &Window::problem_keyframes})
+                     &Window::z_errors, &Window::right_storey, &Window::problem_keyframes})
       (all.*v).insert((all.*v).end(), (w.*v).begin(), (w.*v).end());
     all.pipeline_seconds += w.pipeline_seconds;
   }
@@ -232,11 +263,22 @@ int Run(int argc, char** argv) {
   const auto& events = localization.events();
   const auto first = std::find_if(events.begin(), events.end(),
                                   [](const auto& e) { return e.kind == "localized"; });
-  std::printf("\nlocalized %s; %zu events; pipeline %.0f s, whole (with ray casting) %.0f s\n\n",
+  std::printf("\nlocalized %s; %zu events; pipeline %.0f s, whole (with ray casting) %.0f s\n",
               first == events.end()
                   ? "never"
                   : ("at " + std::to_string(first->stamp - sim.config.start_time) + " s").c_str(),
               events.size(), all.pipeline_seconds, wall);
+  // The events by kind (a "lost" or "rejected" shows here) and the poses off the truth's storey.
+  std::map<std::string, int> kinds;
+  for (const auto& e : events) ++kinds[e.kind];
+  std::string by_kind;
+  for (const auto& [kind, n] : kinds)
+    by_kind += (by_kind.empty() ? "" : ", ") + kind + " " + std::to_string(n);
+  const auto wrong = std::count(all.right_storey.begin(), all.right_storey.end(), 0.0);
+  std::printf(
+      "events: %s; %zu poses published, %td on another storey than the truth's (the truth at most "
+      "%.3f m from a storey's boundary height then)\n\n",
+      by_kind.c_str(), all.right_storey.size(), wrong, sink.wrong_storey_margin());
   return 0;
 }
 
