@@ -35,6 +35,7 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "angle_tolerance_deg", c.angle_tolerance_deg);
   ros_params::Read(pnh, "offset_tolerance", c.offset_tolerance);
   ros_params::Read(pnh, "centre_tolerance", c.centre_tolerance);
+  ros_params::Read(pnh, "pair_through_walls", c.pair_through_walls);
   ros_params::Read(pnh, "min_plane_fraction", c.min_plane_fraction);
   ros_params::Read(pnh, "yaw_tolerance_deg", c.yaw_tolerance_deg);
   ros_params::Read(pnh, "lever_arm_slack", c.lever_arm_slack);

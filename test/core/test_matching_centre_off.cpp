@@ -5,6 +5,7 @@
 // it, at least three paired with two facing each other across it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -63,6 +64,11 @@ TEST(CentreOff, APlaneStandingInTheRoomLeavesItsPairThroughTheOthers) {
   // 3 of 4 planes, the A-room's north wall unseen (lengths unknown here: each counts 1):
   // (3/4) (1/2 + 1/2 x 3/4).
   EXPECT_NEAR(e.quality, 0.75 * (0.5 + 0.5 * 0.75), 1e-9);
+  // Off (pair_through_walls false, as in the doubting matcher): no pair.
+  MatcherConfig off;
+  off.pair_through_walls = false;
+  EXPECT_FALSE(EvaluatePair(Seen(13.86), a, Pose2{}, true, EvaluationTolerances::From(off)).ok);
+  EXPECT_TRUE(GenerateRoomCandidates(Seen(13.86), 0, {a}, off).empty());
   // Within the centre tolerance nothing changes: an ordinary pair.
   const PairEvaluation near = EvaluatePair(Seen(14.4), a, Pose2{}, true, tol);
   ASSERT_TRUE(near.ok);
@@ -127,8 +133,8 @@ TEST(CentreOff, TheCandidatesFindTheRoomByLeavingThePlaneOut) {
     }
   }
   EXPECT_EQ(right, 1);
-  // A centre_off candidate is looked at wherever the centres say to look; ordinary ones (six
-  // copies with the flag off) only near their A-centre.
+  // A centre_off candidate is looked up where its motion puts the S-centre, ordinary ones (six
+  // copies with the flag off) near their A-centre.
   std::vector<std::vector<RoomCandidate>> per_s_room{candidates};
   for (int k = 0; k < 6; ++k) {
     per_s_room[0].push_back(candidates[0]);
@@ -137,9 +143,14 @@ TEST(CentreOff, TheCandidatesFindTheRoomByLeavingThePlaneOut) {
   const CandidateIndex index(per_s_room, a_rooms, 1.0);
   std::vector<int> near;
   index.Near(0, Eigen::Vector2d(100.0, 100.0), 0.1, &near);
-  EXPECT_EQ(near, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_TRUE(near.empty());
   index.Near(0, a_rooms[0].centre, 0.1, &near);
-  EXPECT_EQ(near.size(), 10u);
+  EXPECT_EQ(near.size(), 6u);  // the ordinary ones: no centre_off candidate's S-centre is there
+  for (int k = 0; k < 4; ++k) {
+    index.Near(0, candidates[k].at, 0.1, &near);
+    EXPECT_NE(std::find(near.begin(), near.end(), k), near.end());
+    EXPECT_LE(near.size(), 2u);  // it, and the half-turned variant putting the S-centre there
+  }
 }
 
 }  // namespace

@@ -21,6 +21,7 @@ struct EvaluationTolerances {
   double angle_rad{0.14};
   double min_plane_fraction{0.5};
   double quality_sigma{0.12};
+  bool centre_off{true};  // MatcherConfig::pair_through_walls
 
   static EvaluationTolerances From(const MatcherConfig& config, double slack = 0.0);
 };
@@ -56,6 +57,7 @@ struct RoomCandidate {
   Eigen::Vector2d axis{Eigen::Vector2d::UnitX()};
   double quality{0.0};
   bool centre_off{false};  // paired through its planes only (PairEvaluation::centre_off)
+  Eigen::Vector2d at{Eigen::Vector2d::Zero()};  // where `pose` puts the S-centre (in B)
 };
 
 /// The local candidates of one S-room against every A-room: yaws from pairing an anchor S-plane

@@ -40,6 +40,8 @@ class CandidateIndex {
   struct Room {
     std::vector<int> a_start, by_a;
     std::vector<int> always;
+    // The centre_off ones (their A-centre is not where their S-centre goes): by that point.
+    std::vector<std::pair<int, Eigen::Vector2d>> off;
     int size{0};
   };
   std::vector<Room> rooms_;

@@ -13,6 +13,9 @@ struct MatcherConfig {
   double offset_tolerance{0.3};     // plane offset residual (BIM deviations, noise)
   double centre_tolerance{0.6};     // room centre residual (centres of polygons are vague)
   double min_plane_fraction{0.6};   // share of a room's S-planes that must find an A-surface
+  // A room whose S-centre a plane standing in it moved (a stair's side, a cabinet run taken for
+  // its bound) is paired through its other walls (PairEvaluation::centre_off).
+  bool pair_through_walls{true};
   // --- global candidates (combining room pairs) ---
   double yaw_tolerance_deg{6.0};  // room pairs of one hypothesis agree on the yaw this well
   double lever_arm_slack{0.035};  // extra tolerance per metre from the seed room (yaw error)

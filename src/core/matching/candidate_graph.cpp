@@ -54,33 +54,39 @@ void PruneInconsistent(const RoomDescriptor& s, const RoomDescriptor& a, double 
   pairs = std::move(kept);
 }
 
+/// Whether S-plane `left` could be a plane standing in the room bounded by the S-planes
+/// `others` (indices): two of them face each other across it (normals at right angles to its
+/// own) and it spans at most kMaxSpan of the width between them. A wall across the whole room
+/// bounds a smaller room: another room, not this one with a plane standing in it.
+bool SpansLessThanTheRoom(const RoomDescriptor& s, const std::vector<int>& others, int left,
+                          double min_cos) {
+  const PlaneFeature& plane = s.planes[left];
+  const double cos_span = std::cos(kSpanAngle);
+  double width = 0.0;
+  for (size_t x = 0; x < others.size(); ++x)
+    for (size_t y = x + 1; y < others.size(); ++y) {
+      const PlaneFeature &p = s.planes[others[x]], &q = s.planes[others[y]];
+      if (p.normal.dot(q.normal) <= -min_cos && std::abs(p.normal.dot(plane.normal)) < cos_span)
+        width = std::max(width, std::abs(p.d + q.d));
+    }
+  return width > 0.0 && plane.length <= kMaxSpan * width;
+}
+
 /// For a pair whose centres disagree: the S-planes all paired (`surfaces`) but one, at least
-/// three, two of them facing each other across the one left over, which spans at most kMaxSpan
-/// of the width between them and lies inside the A-room by more than `offset` under `pose` (its
-/// foot, the point nearest the S-centre): a plane standing in the room, not a wall beyond it or
-/// across it.
+/// three, the one left over spanning less than the room (SpansLessThanTheRoom) and lying inside
+/// the A-room by more than `offset` under `pose` (its foot, the point nearest the S-centre): a
+/// plane standing in the room, not a wall beyond it or across it.
 bool OnePlaneInside(const RoomDescriptor& s, const RoomDescriptor& a, const Pose2& pose,
                     const std::vector<std::pair<int, int>>& surfaces, double min_cos,
                     double offset) {
   const int n = static_cast<int>(s.planes.size());
   if (static_cast<int>(surfaces.size()) != n - 1 || n - 1 < 3) return false;
   std::vector<char> paired(n, 0);
-  for (const auto& [i, j] : surfaces) paired[i] = 1;
+  std::vector<int> others;
+  for (const auto& [i, j] : surfaces) paired[i] = 1, others.push_back(i);
   const int left = static_cast<int>(std::find(paired.begin(), paired.end(), 0) - paired.begin());
-  const PlaneFeature& plane = s.planes[left];
-  // Two paired planes facing each other across it (normals at right angles to its own): the
-  // room's width along the plane, which the plane must not span (a wall across the whole room
-  // bounds a smaller room: another room, not this one with a plane standing in it).
-  const double cos_span = std::cos(kSpanAngle);
-  double width = 0.0;
-  for (size_t x = 0; x < surfaces.size(); ++x)
-    for (size_t y = x + 1; y < surfaces.size(); ++y) {
-      const PlaneFeature &p = s.planes[surfaces[x].first], &q = s.planes[surfaces[y].first];
-      if (p.normal.dot(q.normal) <= -min_cos && std::abs(p.normal.dot(plane.normal)) < cos_span)
-        width = std::max(width, std::abs(p.d + q.d));
-    }
-  if (width <= 0.0 || plane.length > kMaxSpan * width) return false;
-  return SignedDistanceToPolygon(a.polygon, pose.Apply(Foot(s, left).point)) < -offset;
+  return SpansLessThanTheRoom(s, others, left, min_cos) &&
+         SignedDistanceToPolygon(a.polygon, pose.Apply(Foot(s, left).point)) < -offset;
 }
 
 }  // namespace
@@ -92,6 +98,7 @@ EvaluationTolerances EvaluationTolerances::From(const MatcherConfig& config, dou
   t.angle_rad = config.angle_tolerance_deg * kDegToRad;
   t.min_plane_fraction = config.min_plane_fraction;
   t.quality_sigma = config.quality_sigma;
+  t.centre_off = config.pair_through_walls;
   return t;
 }
 
@@ -106,7 +113,7 @@ PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, co
   bool centre_off = false;
   if (full_rank) {
     if ((centre_b - a.centre).norm() > tol.centre) {
-      if (s.planes.size() < 4 || a.polygon.empty() ||
+      if (!tol.centre_off || s.planes.size() < 4 || a.polygon.empty() ||
           SignedDistanceToPolygon(a.polygon, centre_b) > 0.0)
         return out;
       centre_off = true;
@@ -196,6 +203,7 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
   std::vector<PlaneFeature> matched_s;
   std::vector<PointCorrespondence> centre(1);
   std::vector<RoomCandidate> found;  // of one A-room and yaw
+  std::vector<int> others;           // S-planes of a variant's pairs
   for (size_t ai = 0; ai < a_rooms.size(); ++ai) {
     const RoomDescriptor& a = a_rooms[ai];
     // Structural pre-check (cheap): enough S-planes have an A-surface at their distance.
@@ -267,6 +275,7 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
         c->s_room = s_index;
         c->a_room = static_cast<int>(ai);
         c->pose = fit.pose;
+        c->at = fit.pose.Apply(s.centre);
         c->full_rank = full_rank;
         const Eigen::Vector2d n0 = c->pose.Rotate(matched_s.front().normal);
         c->axis = Eigen::Vector2d(-n0.y(), n0.x());
@@ -286,11 +295,21 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
         // the room (a stair's side by the north wall, or one by the south wall under a motion
         // 1.5 m along) the room alone may not tell; the rest of the evidence does, or the
         // answer stays AMBIGUOUS.
-        const bool try_variants = found[0].full_rank && pairs.size() >= 4;
+        // Only where every S-plane found a surface (one left out must leave all others paired)
+        // and the one left out could stand in the room (checked before any fit: variants are
+        // what the cold match costs).
+        const bool try_variants = config.pair_through_walls && found[0].full_rank &&
+                                  pairs.size() >= 4 && pairs.size() == s.planes.size();
         found.clear();
         RoomCandidate variant;
-        for (int skip = 0; try_variants && skip < static_cast<int>(pairs.size()); ++skip)
-          if (fit_pairs(skip, &variant)) found.push_back(variant);
+        for (int skip = 0; try_variants && skip < static_cast<int>(pairs.size()); ++skip) {
+          others.clear();
+          for (int k = 0; k < static_cast<int>(pairs.size()); ++k)
+            if (k != skip) others.push_back(pairs[k].first);
+          if (SpansLessThanTheRoom(s, others, pairs[skip].first, min_cos) &&
+              fit_pairs(skip, &variant))
+            found.push_back(variant);
+        }
       }
       // One candidate per A-room and motion (the best): same yaw, and same place but for
       // centre_off variants.
@@ -315,7 +334,7 @@ RoomCorrespondence ToCorrespondence(const RoomCandidate& c, const RoomDescriptor
                                     const RoomDescriptor& a) {
   RoomCorrespondence out;
   out.s_centre = s.centre;
-  out.a_centre = c.centre_off ? c.pose.Apply(s.centre) : a.centre;
+  out.a_centre = c.centre_off ? c.at : a.centre;
   out.yaw = c.pose.yaw;
   out.axis_free = !c.full_rank;
   out.axis_b = c.axis;

@@ -46,8 +46,9 @@ CandidateIndex::CandidateIndex(const std::vector<std::vector<RoomCandidate>>& ca
     std::vector<int> full;
     for (int k = 0; k < room.size; ++k) {
       const RoomCandidate& c = candidates[i][k];
-      // A centre_off candidate's A-centre is not where its S-centre goes: looked at always.
-      if (c.full_rank && !c.centre_off)
+      if (c.full_rank && c.centre_off)
+        room.off.emplace_back(k, c.at);
+      else if (c.full_rank)
         a_of.push_back(c.a_room), full.push_back(k);
       else
         room.always.push_back(k);
@@ -69,6 +70,8 @@ void CandidateIndex::Near(int s_room, const Eigen::Vector2d& centre, double radi
     return;
   }
   *out = room.always;
+  for (const auto& [k, at] : room.off)
+    if ((at - centre).norm() <= radius) out->push_back(k);
   const Eigen::Vector2d lo = (centre - origin_).array() / cell_ - radius / cell_;
   const Eigen::Vector2d hi = (centre - origin_).array() / cell_ + radius / cell_;
   const int x0 = std::max(0, static_cast<int>(std::floor(lo.x())));

@@ -59,6 +59,9 @@ GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {
     MatcherConfig lenient = config;
     lenient.centre_tolerance = config.doubt_centre_tolerance;
     lenient.doubt_centre_tolerance = 0.0;  // the doubter does not doubt itself
+    // Its lenient centre gate is for the same moved centres; its candidates are half the cold
+    // match's cost, so no variants there.
+    lenient.pair_through_walls = false;
     doubter_ = std::make_unique<GraphMatcher>(lenient);
   }
 }
@@ -444,10 +447,17 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
 
   // 2. Global candidates from seeds (best local candidates first), skipping seeds that an
   // earlier hypothesis already holds under the same motion.
+  // A room paired through its walls alone (centre_off) seeds only where it is its S-room's
+  // best fit (AC11's hall against the attic's): a weaker one may join a hypothesis, and the
+  // seeds are what a match costs.
   std::vector<const RoomCandidate*> seeds;
-  for (const auto& list : candidates)
+  for (const auto& list : candidates) {
+    double best_ordinary = 0.0;
     for (const auto& c : list)
-      if (c.full_rank) seeds.push_back(&c);
+      if (c.full_rank && !c.centre_off) best_ordinary = std::max(best_ordinary, c.quality);
+    for (const auto& c : list)
+      if (c.full_rank && (!c.centre_off || c.quality > best_ordinary)) seeds.push_back(&c);
+  }
   std::stable_sort(seeds.begin(), seeds.end(), [](const RoomCandidate* x, const RoomCandidate* y) {
     return x->quality > y->quality;
   });
