@@ -64,7 +64,7 @@ TEST(CentreOff, APlaneStandingInTheRoomLeavesItsPairThroughTheOthers) {
   // 3 of 4 planes, the A-room's north wall unseen (lengths unknown here: each counts 1):
   // (3/4) (1/2 + 1/2 x 3/4).
   EXPECT_NEAR(e.quality, 0.75 * (0.5 + 0.5 * 0.75), 1e-9);
-  // Off (pair_through_walls false, as in the doubting matcher): no pair.
+  // Off (pair_through_walls false): no pair, no candidate.
   MatcherConfig off;
   off.pair_through_walls = false;
   EXPECT_FALSE(EvaluatePair(Seen(13.86), a, Pose2{}, true, EvaluationTolerances::From(off)).ok);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -59,9 +60,8 @@ GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {
     MatcherConfig lenient = config;
     lenient.centre_tolerance = config.doubt_centre_tolerance;
     lenient.doubt_centre_tolerance = 0.0;  // the doubter does not doubt itself
-    // Its lenient centre gate is for the same moved centres; its candidates are half the cold
-    // match's cost, so no variants there.
-    lenient.pair_through_walls = false;
+    // It pairs rooms through their walls too: without, M2 went UNIQUE on the cellar (the
+    // second floor's hall, paired through its walls, was the competitor it found).
     doubter_ = std::make_unique<GraphMatcher>(lenient);
   }
 }
@@ -448,15 +448,24 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
   // 2. Global candidates from seeds (best local candidates first), skipping seeds that an
   // earlier hypothesis already holds under the same motion.
   // A room paired through its walls alone (centre_off) seeds only where it is its S-room's
-  // best fit (AC11's hall against the attic's): a weaker one may join a hypothesis, and the
-  // seeds are what a match costs.
+  // best fit on its storey (AC11's hall against the attic's): a weaker one may join a
+  // hypothesis, and the seeds are what a match costs. Per storey: a twin floor's ordinary pair
+  // must not keep this storey's hall from seeding.
   std::vector<const RoomCandidate*> seeds;
+  std::map<int, double> best_ordinary;  // per storey, of one S-room
   for (const auto& list : candidates) {
-    double best_ordinary = 0.0;
+    best_ordinary.clear();
     for (const auto& c : list)
-      if (c.full_rank && !c.centre_off) best_ordinary = std::max(best_ordinary, c.quality);
-    for (const auto& c : list)
-      if (c.full_rank && (!c.centre_off || c.quality > best_ordinary)) seeds.push_back(&c);
+      if (c.full_rank && !c.centre_off) {
+        double& best = best_ordinary[a_rooms_[c.a_room].storey];
+        best = std::max(best, c.quality);
+      }
+    for (const auto& c : list) {
+      if (!c.full_rank) continue;
+      const auto best = best_ordinary.find(a_rooms_[c.a_room].storey);
+      if (!c.centre_off || best == best_ordinary.end() || c.quality > best->second)
+        seeds.push_back(&c);
+    }
   }
   std::stable_sort(seeds.begin(), seeds.end(), [](const RoomCandidate* x, const RoomCandidate* y) {
     return x->quality > y->quality;
