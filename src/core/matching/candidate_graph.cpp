@@ -291,13 +291,11 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
       found.assign(1, RoomCandidate{});
       if (!fit_pairs(-1, &found[0])) {
         // One plane that is not the room's bound (paired with a wall it is not) pulls the fit:
-        // each pair left out in turn. Every variant that holds is kept: which plane stands in
-        // the room (a stair's side by the north wall, or one by the south wall under a motion
-        // 1.5 m along) the room alone may not tell; the rest of the evidence does, or the
-        // answer stays AMBIGUOUS.
-        // Only where every S-plane found a surface (one left out must leave all others paired)
-        // and the one left out could stand in the room (checked before any fit: variants are
-        // what the cold match costs).
+        // each pair left out in turn, where every S-plane found a surface and the one left out
+        // could stand in the room (checked before any fit: variants are what the cold match
+        // costs). Every variant that holds is kept: which plane stands in the room (a stair's
+        // side by the north wall, or one by the south wall under a motion 1.5 m along) the
+        // room alone may not tell; the rest of the evidence does, or the answer stays AMBIGUOUS.
         const bool try_variants = config.pair_through_walls && found[0].full_rank &&
                                   pairs.size() >= 4 && pairs.size() == s.planes.size();
         found.clear();
