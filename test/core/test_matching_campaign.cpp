@@ -50,7 +50,8 @@ TEST(MatchingCampaign, ThousandRandomTrialsWithoutAWrongUniqueMatch) {
     tally.Add(buildings[b].first, matchers[b].Match(s.graph), s,
               "trial " + std::to_string(trial) + " (" + buildings[b].first + ", " +
                   std::to_string(c.rooms.size()) + " rooms, S-Graph seed " +
-                  std::to_string(c.seed) + ")");
+                  std::to_string(c.seed) + ")",
+              &g);
   }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -31,7 +31,7 @@ TEST(CandidateIndex, NearHoldsEveryConsistentCandidateInListOrder) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> coord(-60.0, 60.0), yaw(-M_PI, M_PI), unit(0.0, 1.0);
   MatcherConfig config;
-  int checked = 0, accepted = 0, returned = 0;
+  int checked = 0, accepted = 0, accepted_off = 0, returned = 0;
   for (int trial = 0; trial < 40; ++trial) {
     config.centre_tolerance = trial % 2 ? 0.6 : 1.2;  // the matcher's and the doubter's gate
     std::vector<RoomDescriptor> a_rooms(150 + trial);
@@ -46,6 +46,10 @@ TEST(CandidateIndex, NearHoldsEveryConsistentCandidateInListOrder) {
         c.a_room = static_cast<int>(rng() % a_rooms.size());
         c.pose.yaw = yaw(rng);
         c.full_rank = unit(rng) < 0.97;  // a few corridor (axis-free) candidates
+        // Rooms paired through their walls: indexed where their S-centre goes, on the grid of
+        // the A-centres or beyond it (y out to ±27 m, the A-centres to ±18).
+        c.centre_off = c.full_rank && unit(rng) < 0.25;
+        c.at = {coord(rng), 0.45 * coord(rng)};
         candidates[i].push_back(c);
       }
     }
@@ -73,6 +77,7 @@ TEST(CandidateIndex, NearHoldsEveryConsistentCandidateInListOrder) {
             ++checked;
             if (w == 0.0) continue;
             ++accepted;
+            accepted_off += c.centre_off;
             ASSERT_TRUE(std::binary_search(near.begin(), near.end(), static_cast<int>(k)))
                 << "seed " << seed << " trial " << trial << ": candidate " << k
                 << " is consistent but not returned";
@@ -81,9 +86,10 @@ TEST(CandidateIndex, NearHoldsEveryConsistentCandidateInListOrder) {
         }
       }
   }
-  std::cout << "[ index ] " << checked << " pairs checked, " << accepted << " consistent, "
-            << returned << " returned" << std::endl;
+  std::cout << "[ index ] " << checked << " pairs checked, " << accepted << " consistent ("
+            << accepted_off << " through their walls), " << returned << " returned" << std::endl;
   EXPECT_GT(accepted, 100);          // the property was exercised
+  EXPECT_GT(accepted_off, 20);       // for rooms paired through their walls too
   EXPECT_LT(returned, checked / 5);  // and the index prunes
 }
 

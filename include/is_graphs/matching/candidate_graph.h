@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -19,11 +20,19 @@ struct EvaluationTolerances {
   double offset{0.3};
   double centre{0.6};
   double angle_rad{0.14};
+  double min_cos{std::cos(0.14)};  // cos(angle_rad): From sets both (once, not per pair)
   double min_plane_fraction{0.5};
   double quality_sigma{0.12};
   bool centre_off{true};  // MatcherConfig::pair_through_walls
 
   static EvaluationTolerances From(const MatcherConfig& config, double slack = 0.0);
+  /// These with `slack` more on offsets and centres (From(config, slack) of a From(config)).
+  EvaluationTolerances Slackened(double slack) const {
+    EvaluationTolerances t = *this;
+    t.offset += slack;
+    t.centre += slack;
+    return t;
+  }
 };
 
 /// A room pair under a given motion: which S-planes found which A-surfaces, how well.
@@ -47,6 +56,10 @@ struct PairEvaluation {
 /// of the A-room's footprint.
 PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, const Pose2& pose,
                             bool full_rank, const EvaluationTolerances& tolerances);
+/// The same with `rotation` = pose.R() already at hand (a fit's, turned once).
+PairEvaluation EvaluatePair(const RoomDescriptor& s, const RoomDescriptor& a, const Pose2& pose,
+                            const Eigen::Matrix2d& rotation, bool full_rank,
+                            const EvaluationTolerances& tolerances);
 
 /// A local candidate: an S-room, an A-room and the motion their surfaces alone imply.
 struct RoomCandidate {

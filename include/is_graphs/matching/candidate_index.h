@@ -30,6 +30,8 @@ class CandidateIndex {
 
  private:
   static constexpr int kMaxCells = 512;
+  /// The grid cell of point p, -1 beyond the grid.
+  int CellOf(const Eigen::Vector2d& p) const;
   // A-room centres on a grid (CSR: the rooms of cell c are rooms_in_cell_[cell_start_[c] ..]).
   double cell_;
   Eigen::Vector2d origin_{Eigen::Vector2d::Zero()};
@@ -40,8 +42,10 @@ class CandidateIndex {
   struct Room {
     std::vector<int> a_start, by_a;
     std::vector<int> always;
-    // The centre_off ones (their A-centre is not where their S-centre goes): by that point.
-    std::vector<std::pair<int, Eigen::Vector2d>> off;
+    // The centre_off ones (their A-centre is not where their S-centre goes), by that point:
+    // on the grid (CSR over cells), and those beyond it in a list.
+    std::vector<int> off_start;
+    std::vector<std::pair<int, Eigen::Vector2d>> off_in_cell, off_beyond;
     int size{0};
   };
   std::vector<Room> rooms_;

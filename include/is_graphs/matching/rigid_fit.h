@@ -2,7 +2,10 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <vector>
+
+#include "is_graphs/geometry/se3.h"
 
 namespace is_graphs {
 namespace matching {
@@ -20,8 +23,10 @@ struct Pose2 {
   Eigen::Isometry3d ToIsometry() const;
 };
 
-/// |a - b| wrapped to [0, π].
-double AngleDistance(double a, double b);
+/// |a - b| wrapped to [0, π] (inline: candidate generation and growth call it per pair).
+inline double AngleDistance(double a, double b) {
+  return std::abs(geometry::NormalizeAngle(a - b));
+}
 
 /// An S-plane (normal n_s, n_s·p = d_s, in M) matched to an A-surface (n_a, d_a, in B). The
 /// residual is compared at `a_ref` (the A-room centre): the distance of a_ref in front of the

@@ -53,6 +53,8 @@ double SignedDistanceToPolygon(const std::vector<Eigen::Vector2d>& polygon,
 
 /// True when the room's planes span two directions at least `min_angle_rad` apart.
 bool PlanesSpanTwoDirections(const std::vector<PlaneFeature>& planes, double min_angle_rad);
+/// The same with the angle as its cosine (computed once by a caller testing many rooms).
+bool PlanesSpanTwoDirectionsCos(const std::vector<PlaneFeature>& planes, double max_abs_cos);
 
 }  // namespace matching
 }  // namespace is_graphs

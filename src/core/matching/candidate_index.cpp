@@ -44,18 +44,36 @@ CandidateIndex::CandidateIndex(const std::vector<std::vector<RoomCandidate>>& ca
     room.size = static_cast<int>(candidates[i].size());
     std::vector<int> a_of;  // of the full-rank ones, in list order
     std::vector<int> full;
+    std::vector<int> off_cell, off;  // of the centre_off ones on the grid
     for (int k = 0; k < room.size; ++k) {
       const RoomCandidate& c = candidates[i][k];
-      if (c.full_rank && c.centre_off)
-        room.off.emplace_back(k, c.at);
-      else if (c.full_rank)
+      if (c.full_rank && c.centre_off) {
+        const int cell_of_at = CellOf(c.at);
+        if (cell_of_at < 0)
+          room.off_beyond.emplace_back(k, c.at);
+        else
+          off_cell.push_back(cell_of_at), off.push_back(k);
+      } else if (c.full_rank) {
         a_of.push_back(c.a_room), full.push_back(k);
-      else
+      } else {
         room.always.push_back(k);
+      }
     }
     Compress(a_of, static_cast<int>(a_rooms.size()), &room.a_start, &room.by_a);
     for (int& k : room.by_a) k = full[k];
+    if (off.empty()) continue;  // no cells for none (most S-rooms)
+    std::vector<int> order;
+    Compress(off_cell, nx_ * ny_, &room.off_start, &order);
+    for (int k : order) room.off_in_cell.emplace_back(off[k], candidates[i][off[k]].at);
   }
+}
+
+int CandidateIndex::CellOf(const Eigen::Vector2d& p) const {
+  const Eigen::Vector2d g = (p - origin_) / cell_;
+  if (!g.allFinite()) return -1;
+  const double x = std::floor(g.x()), y = std::floor(g.y());
+  if (x < 0.0 || y < 0.0 || x >= nx_ || y >= ny_) return -1;
+  return static_cast<int>(y) * nx_ + static_cast<int>(x);
 }
 
 void CandidateIndex::Near(int s_room, const Eigen::Vector2d& centre, double radius,
@@ -70,7 +88,7 @@ void CandidateIndex::Near(int s_room, const Eigen::Vector2d& centre, double radi
     return;
   }
   *out = room.always;
-  for (const auto& [k, at] : room.off)
+  for (const auto& [k, at] : room.off_beyond)
     if ((at - centre).norm() <= radius) out->push_back(k);
   const Eigen::Vector2d lo = (centre - origin_).array() / cell_ - radius / cell_;
   const Eigen::Vector2d hi = (centre - origin_).array() / cell_ + radius / cell_;
@@ -78,9 +96,14 @@ void CandidateIndex::Near(int s_room, const Eigen::Vector2d& centre, double radi
   const int y0 = std::max(0, static_cast<int>(std::floor(lo.y())));
   const int x1 = std::min(nx_ - 1, static_cast<int>(std::floor(hi.x())));
   const int y1 = std::min(ny_ - 1, static_cast<int>(std::floor(hi.y())));
+  const bool off = !room.off_start.empty();
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) {
       const int c = y * nx_ + x;
+      for (int j = off ? room.off_start[c] : 0; off && j < room.off_start[c + 1]; ++j) {
+        const auto& [k, at] = room.off_in_cell[j];
+        if ((at - centre).norm() <= radius) out->push_back(k);
+      }
       for (int j = cell_start_[c]; j < cell_start_[c + 1]; ++j) {
         const int a = rooms_in_cell_[j];
         if (room.a_start[a] == room.a_start[a + 1]) continue;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -89,6 +90,7 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
                               double affinity_floor, bool* abandoned) const {
   Hypothesis h;
   *abandoned = false;
+  const auto strict = EvaluationTolerances::From(config_);
   // What the affinity could still reach: every S-room not yet turned away at its largest weight
   // (a pair's quality is at most 1).
   auto cap = [&](const RoomDescriptor& s) {
@@ -106,8 +108,7 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
     const auto& s = s_rooms[seed->s_room];
     const auto& a = a_rooms_[seed->a_room];
     seed_corr = ToCorrespondence(*seed, s, a);
-    PairEvaluation eval =
-        EvaluatePair(s, a, h.pose, seed->full_rank, EvaluationTolerances::From(config_));
+    PairEvaluation eval = EvaluatePair(s, a, h.pose, seed->full_rank, strict);
     if (!eval.ok) return h;
     h.members.push_back({seed->s_room, seed->a_room, seed->full_rank, std::move(eval)});
     a_taken[seed->a_room] = seed->full_rank;
@@ -119,8 +120,7 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
   for (int si : order) {
     if (seed && si == seed->s_room) continue;
     const RoomDescriptor& s = s_rooms[si];
-    const auto tol =
-        EvaluationTolerances::From(config_, config_.lever_arm_slack * (s.centre - anchor).norm());
+    const auto tol = strict.Slackened(config_.lever_arm_slack * (s.centre - anchor).norm());
     const RoomCandidate* best = nullptr;
     PairEvaluation best_eval;
     // Without a seed (the last best motion grown again) every candidate may join.
@@ -130,6 +130,7 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
                    ? ConsistencyRadius(ds.norm(), config_.centre_tolerance, config_.lever_arm_slack)
                    : std::numeric_limits<double>::infinity(),
                &near);
+    std::optional<Eigen::Matrix2d> turn;  // h.pose.R(), once for the candidates below
     for (int k : near) {
       const RoomCandidate& c = candidates[si][k];
       if (AngleDistance(c.pose.yaw, h.pose.yaw) > yaw_tol) continue;
@@ -137,7 +138,8 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
       const RoomDescriptor& a = a_rooms_[c.a_room];
       if (storey >= 0 && a.storey != storey) continue;
       if (seed && !RoomPairsAgree(seed_corr, ToCorrespondence(c, s, a), config_)) continue;
-      PairEvaluation eval = EvaluatePair(s, a, h.pose, c.full_rank, tol);
+      if (!turn) turn = h.pose.R();
+      PairEvaluation eval = EvaluatePair(s, a, h.pose, *turn, c.full_rank, tol);
       if (eval.ok && (!best || eval.quality > best_eval.quality))
         best = &c, best_eval = std::move(eval);
     }
@@ -156,7 +158,6 @@ Hypothesis GraphMatcher::Grow(const Pose2& start, const RoomCandidate* seed,
     if (fit.translation_determined && fit.planes_determine_translation) h.pose = fit.pose;
   }
   // Final check of every pair under the motion fitted to all of them, without slack.
-  const auto strict = EvaluationTolerances::From(config_);
   for (int pass = 0; pass < 2 && !h.members.empty(); ++pass) {
     const RigidFit fit = FitMembers(h.members, s_rooms, a_rooms_, config_);
     if (fit.translation_determined && fit.planes_determine_translation) h.pose = fit.pose;
@@ -472,13 +473,18 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
   });
   std::vector<Hypothesis> hypotheses;
   const CandidateIndex index(candidates, a_rooms_);
-  // The hypotheses holding each room pair (s_room * |A| + a_room), to find covered seeds.
-  std::vector<std::vector<int>> holding(s_rooms.size() * a_rooms_.size());
+  // The hypotheses holding each room pair (s_room * |A| + a_room), to find covered seeds: a
+  // list per pair, linked through `held` (two allocations, not one per pair held).
+  std::vector<int> held_head(s_rooms.size() * a_rooms_.size(), -1);
+  std::vector<std::pair<int, int>> held;  // (hypothesis, next entry of its pair or -1)
   // A hypothesis given up (below affinity_floor) still covers the pairs it had, then has none.
   bool abandoned = false;
   auto add = [&](Hypothesis h) {
-    for (const auto& m : h.members)
-      holding[m.s_room * a_rooms_.size() + m.a_room].push_back(static_cast<int>(hypotheses.size()));
+    for (const auto& m : h.members) {
+      int& head = held_head[m.s_room * a_rooms_.size() + m.a_room];
+      held.emplace_back(static_cast<int>(hypotheses.size()), head);
+      head = static_cast<int>(held.size()) - 1;
+    }
     if (abandoned) h.members.clear();
     hypotheses.push_back(std::move(h));
   };
@@ -488,11 +494,14 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
   std::vector<std::vector<int>> orders(s_rooms.size());  // from each S-room, made once
   for (const RoomCandidate* seed : seeds) {
     if (stats_.seeds >= config_.max_seeds) break;
-    const auto& holders = holding[seed->s_room * a_rooms_.size() + seed->a_room];
-    const bool covered = std::any_of(holders.begin(), holders.end(), [&](int k) {
-      return hypotheses[k].storey == a_rooms_[seed->a_room].storey &&
-             SameMotion(hypotheses[k].pose, seed->pose, {s_rooms[seed->s_room].centre}, config_);
-    });
+    const std::vector<Eigen::Vector2d> at_seed{s_rooms[seed->s_room].centre};
+    bool covered = false;
+    for (int e = held_head[seed->s_room * a_rooms_.size() + seed->a_room]; e >= 0 && !covered;
+         e = held[e].second) {
+      const Hypothesis& k = hypotheses[held[e].first];
+      covered = k.storey == a_rooms_[seed->a_room].storey &&
+                SameMotion(k.pose, seed->pose, at_seed, config_);
+    }
     if (covered) continue;
     ++stats_.seeds;
     std::vector<int>& order = orders[seed->s_room];

@@ -39,8 +39,6 @@ Eigen::Isometry3d Pose2::ToIsometry() const {
   return geometry::IsometryFromXYYaw(t.x(), t.y(), geometry::NormalizeAngle(yaw));
 }
 
-double AngleDistance(double a, double b) { return std::abs(geometry::NormalizeAngle(a - b)); }
-
 double PlaneResidual(const PlaneCorrespondence& c, const Pose2& pose) {
   const Eigen::Vector2d n = pose.Rotate(c.s_normal);
   const double d = c.s_d + n.dot(pose.t);

@@ -114,7 +114,10 @@ double SignedDistanceToPolygon(const std::vector<Eigen::Vector2d>& polygon,
 }
 
 bool PlanesSpanTwoDirections(const std::vector<PlaneFeature>& planes, double min_angle_rad) {
-  const double max_abs_cos = std::cos(min_angle_rad);
+  return PlanesSpanTwoDirectionsCos(planes, std::cos(min_angle_rad));
+}
+
+bool PlanesSpanTwoDirectionsCos(const std::vector<PlaneFeature>& planes, double max_abs_cos) {
   for (size_t i = 0; i < planes.size(); ++i)
     for (size_t j = i + 1; j < planes.size(); ++j)
       if (std::abs(planes[i].normal.dot(planes[j].normal)) < max_abs_cos) return true;
