@@ -134,7 +134,7 @@ std::vector<RoomCandidate> GenerateRoomCandidates(const RoomDescriptor& s, int s
   if (s.planes.empty()) return out;
   const EvaluationTolerances tol = EvaluationTolerances::From(config);
   const double r_tol = config.offset_tolerance + config.centre_tolerance;
-  const double min_cos = std::cos(tol.angle_rad);
+  const double min_cos = tol.min_cos;
   const int needed = NeededPlanes(static_cast<int>(s.planes.size()), config.min_plane_fraction);
 
   // Anchors: the first plane and the first one not parallel to it (an extra plane in the
