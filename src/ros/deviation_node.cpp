@@ -99,6 +99,7 @@ int main(int argc, char** argv) {
     is_graphs::ros_params::Read(pnh, "min_overlap", c.min_overlap);
     is_graphs::ros_params::Read(pnh, "extra_min_length", c.extra_min_length);
     is_graphs::ros_params::Read(pnh, "extra_min_height", c.extra_min_height);
+    is_graphs::ros_params::Read(pnh, "extra_min_views", c.extra_min_views);
     is_graphs::ros_params::Read(pnh, "door_margin", c.door_margin);
     is_graphs::ros_params::Read(pnh, "not_built_min_rays", c.not_built_min_rays);
     is_graphs::merging::DoorwayDeviationConfig d;

@@ -55,6 +55,7 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "max_planes", f.max_planes);
   Read(pnh, "min_segment_length", f.min_segment_length);
   Read(pnh, "min_segment_height", f.min_segment_height);
+  Read(pnh, "min_segment_support", f.min_segment_support);
   Read(pnh, "wall_min_rise", f.wall_min_rise);
   Read(pnh, "sensor_max_elevation_deg", f.sensor_max_elevation_deg);
   Read(pnh, "segment_gap", f.segment_gap);

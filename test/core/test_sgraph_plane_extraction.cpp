@@ -122,6 +122,30 @@ TEST(PlaneExtraction, FurnitureBelowTheWallRiseIsDropped) {
   EXPECT_GE(Find(all, geometry::Plane(Vector3d(-1, 0, 0), -3.0)), 0) << "the counter, unchecked";
 }
 
+// H6's phantom wall: 8 m ahead, the top beam's arc on the ceiling (one row of points, 2 m
+// long) and a post beside it (one column, 2 m tall) lie in one vertical plane that spans a
+// wall's extent and height. It shows that height in one 0.25 m column only; a real wall of
+// that extent shows it all along.
+TEST(PlaneExtraction, ABeamsArcAndAPostAreNoWall) {
+  PointList points;
+  for (double y = -1.0; y <= 1.0; y += 0.02) points.emplace_back(8.0f, float(y), 2.49f);
+  for (double z = -0.41; z <= 1.62; z += 0.29) points.emplace_back(8.0f, -1.16f, float(z));
+  FrontendConfig config;
+  config.extract_floor = false;
+  config.wall_normal_max_angle_deg = 90.0;  // the rule under test alone
+  const geometry::Plane ahead(Vector3d(-1, 0, 0), -8.0);
+  EXPECT_LT(Find(ExtractPlanes(points, Vector3d::UnitZ(), Vector3d::Zero(), config), ahead), 0);
+  config.min_segment_support = 0.0;
+  EXPECT_GE(Find(ExtractPlanes(points, Vector3d::UnitZ(), Vector3d::Zero(), config), ahead), 0)
+      << "without the support rule it is taken for a wall";
+  std::mt19937 rng(5);
+  PointList wall;
+  testing::AddWall(wall, Vector2d(8, -1.16), Vector2d(8, 1), -0.41, 2.49, 0.08, 0.005, rng);
+  config.min_segment_support = FrontendConfig().min_segment_support;
+  EXPECT_GE(Find(ExtractPlanes(wall, Vector3d::UnitZ(), Vector3d::Zero(), config), ahead), 0)
+      << "a wall over the same extent";
+}
+
 TEST(PlaneExtraction, EmptyAndTinyCloudsGiveNothing) {
   FrontendConfig config;
   EXPECT_TRUE(ExtractPlanes({}, Vector3d::UnitZ(), Vector3d::Zero(), config).empty());

@@ -2,6 +2,7 @@
 // rooms 4 x 4 m split by a partition at x = 4) and hand-made S-Graphs placed by a known B_x_M.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "is_graphs/merging/wall_deviations.h"
@@ -191,6 +192,33 @@ TEST(WallDeviations, ExtraWallsAreLongAndTallPlanesNoSurfaceExplains) {
   EXPECT_EQ(Count(r, WallStatus::kAsPlanned), 5);
 }
 
+// H6: a plane fitted once to a beam's arc on the ceiling and a post, 8 m ahead, stood across
+// the corridor, 2.9 m tall. A wall in view is observed again from the next keyframes.
+TEST(WallDeviations, APlaneObservedFromOneKeyframeIsNoExtraWall) {
+  const std::vector<SPlaneSpec> extra = {{{5, 2.05}, {7, 2.05}, {0, 1}, 2.5}};
+  sgraph::SGraph s = Seen(kBothRooms, Plus(Plus(kExterior, Partition(0, 0)), extra), SomeMotion());
+  const int id = s.planes.back().id;
+  auto seen_by = [&](int keyframes) {
+    sgraph::SGraph g = s;
+    std::vector<sgraph::PlaneObservation> kept;
+    for (const auto& o : g.observations)
+      if (o.plane != id || o.keyframe < keyframes) kept.push_back(o);
+    g.observations = kept;
+    return Count(merging::ClassifyWalls(Storey(), g, SomeMotion(), {}), WallStatus::kExtra);
+  };
+  EXPECT_EQ(seen_by(1), 0);
+  EXPECT_EQ(seen_by(2), 1);
+  merging::WallDeviationConfig once;
+  once.extra_min_views = 1;
+  sgraph::SGraph g = s;
+  g.observations.erase(std::remove_if(g.observations.begin(), g.observations.end(),
+                                      [&](const sgraph::PlaneObservation& o) {
+                                        return o.plane == id && o.keyframe > 0;
+                                      }),
+                       g.observations.end());
+  EXPECT_EQ(Count(merging::ClassifyWalls(Storey(), g, SomeMotion(), once), WallStatus::kExtra), 1);
+}
+
 TEST(WallDeviations, AWallWithoutGlobalIdIsReportedByItsId) {
   const auto r = merging::ClassifyWalls(
       Storey(""), Seen(kBothRooms, Plus(kExterior, Partition(0.2, 0)), SomeMotion()), SomeMotion(),
@@ -221,6 +249,9 @@ TEST(WallDeviations, ConfigValidationNamesTheParameter) {
   c = {};
   c.not_built_min_rays = 0;
   EXPECT_EQ(c.Validate().rfind("not_built_min_rays:", 0), 0u);
+  c = {};
+  c.extra_min_views = 0;
+  EXPECT_EQ(c.Validate().rfind("extra_min_views:", 0), 0u);
 }
 
 }  // namespace

@@ -17,8 +17,8 @@ enum class WallStatus { kAsPlanned = 0, kMoved = 1, kNotBuilt = 2, kExtra = 3, k
 /// "AS_PLANNED", "MOVED", "NOT_BUILT", "EXTRA", "NOT_SEEN" (msg/WallDeviation.msg).
 const char* ToString(WallStatus status);
 
-/// The tuning of ClassifyWalls; the ROS parameters of merger_node carry the same names with a
-/// `deviation_report/` prefix (config/merger.yaml).
+/// The tuning of ClassifyWalls; deviation_node's ROS parameters carry the same names
+/// (config/deviations.yaml).
 struct WallDeviationConfig {
   double planned_offset{0.03};  // m: within this (and planned_angle_deg): AS_PLANNED
   double planned_angle_deg{1.0};
@@ -27,6 +27,7 @@ struct WallDeviationConfig {
   double min_overlap{0.5};        // m of the A-surface's length an S-plane must cover
   double extra_min_length{1.0};   // m: an unmatched S-plane shorter is clutter, not a wall
   double extra_min_height{1.85};  // m of vertical extent seen (clutter is lower)
+  int extra_min_views{2};         // keyframes that observed it: one glimpse is no wall
   double door_margin{0.15};       // m beyond a doorway's half-width: sight lines pass there
   int not_built_min_rays{2};      // sight lines through the wall for NOT_BUILT
 

@@ -50,6 +50,9 @@ struct FrontendConfig {
   int max_planes{24};
   double min_segment_length{0.6};  // horizontal extent of a wall segment
   double min_segment_height{0.3};  // vertical extent of a wall segment
+  // m of a wall segment's length where its points rise min_segment_height or more (0.25 m
+  // columns): one beam's arc on a far ceiling plus a post spans a wall's extent, not its surface.
+  double min_segment_support{0.5};
   // A wall rises above the sensor: a segment whose top stays below the sensor + wall_min_rise
   // is furniture (a counter, a sofa, a pallet), unless the wall is so near that the highest
   // beam (sensor_max_elevation_deg) cannot see that high on it.

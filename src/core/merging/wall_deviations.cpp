@@ -48,7 +48,7 @@ std::vector<WallDeviation> Extras(const std::vector<detail::PlaneInB>& planes,
   std::vector<int> candidates;
   for (size_t i = 0; i < planes.size(); ++i)
     if (!explained[i] && planes[i].Length() >= config.extra_min_length &&
-        planes[i].height >= config.extra_min_height)
+        planes[i].height >= config.extra_min_height && planes[i].views >= config.extra_min_views)
       candidates.push_back(static_cast<int>(i));
   std::vector<bool> used(planes.size(), false);
   std::vector<WallDeviation> out;
@@ -134,6 +134,7 @@ std::string WallDeviationConfig::Validate() const {
   if (!positive(extra_min_length)) return "extra_min_length: must be > 0 m";
   if (!std::isfinite(extra_min_height) || extra_min_height < 0.0)
     return "extra_min_height: must be >= 0 m";
+  if (extra_min_views < 1) return "extra_min_views: must be >= 1";
   if (!std::isfinite(door_margin) || door_margin < 0.0) return "door_margin: must be >= 0 m";
   if (not_built_min_rays < 1) return "not_built_min_rays: must be >= 1";
   return "";

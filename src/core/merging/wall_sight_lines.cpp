@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace is_graphs {
 namespace merging {
@@ -35,8 +36,12 @@ std::vector<PlaneInB> PlanesInB(const sgraph::SGraph& graph, const Eigen::Isomet
   for (const auto& k : graph.keyframes)
     keyframes[k.id] = (bim_T_map * k.pose.translation()).head<2>();
   std::map<int, std::vector<Eigen::Vector2d>> seen_from;
-  for (const auto& o : graph.observations)
-    if (keyframes.count(o.keyframe)) seen_from[o.plane].push_back(keyframes[o.keyframe]);
+  std::map<int, std::set<int>> views;
+  for (const auto& o : graph.observations) {
+    if (!keyframes.count(o.keyframe)) continue;
+    seen_from[o.plane].push_back(keyframes[o.keyframe]);
+    views[o.plane].insert(o.keyframe);
+  }
   std::vector<PlaneInB> out;
   for (const auto& plane : graph.planes) {
     const geometry::Plane b = plane.plane.Transformed(bim_T_map);
@@ -54,6 +59,7 @@ std::vector<PlaneInB> PlanesInB(const sgraph::SGraph& graph, const Eigen::Isomet
     p.height = plane.z_max - plane.z_min;
     p.offset_variance = plane.covariance(3, 3);
     const auto& all = seen_from[plane.id];
+    p.views = static_cast<int>(views[plane.id].size());
     const size_t n = std::min<size_t>(8, all.size());
     for (size_t i = 0; i < n; ++i) p.from.push_back(all[i * all.size() / n]);
     out.push_back(p);

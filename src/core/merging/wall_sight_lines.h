@@ -21,6 +21,7 @@ struct PlaneInB {
   Eigen::Vector2d start{Eigen::Vector2d::Zero()}, end{Eigen::Vector2d::Zero()};
   double height{0.0};                 // z_max - z_min seen
   double offset_variance{0.0};        // m^2, of d (the S-Graph's covariance)
+  int views{0};                       // keyframes that observed it
   std::vector<Eigen::Vector2d> from;  // keyframe positions it was observed from (at most 8)
   double Length() const { return (end - start).norm(); }
 };

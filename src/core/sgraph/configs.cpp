@@ -67,6 +67,7 @@ std::string FrontendConfig::Validate() const {
   c.Range("max_planes", max_planes, 1, 1000);
   c.Positive("min_segment_length", min_segment_length);
   c.NonNegative("min_segment_height", min_segment_height);
+  c.NonNegative("min_segment_support", min_segment_support);
   c.NonNegative("wall_min_rise", wall_min_rise);
   c.Range("sensor_max_elevation_deg", sensor_max_elevation_deg, 0.0, 89.0);
   c.Positive("segment_gap", segment_gap);

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "is_graphs/sgraph/floor_check.h"
@@ -61,6 +62,32 @@ double RequiredRise(const geometry::Plane& plane, const Eigen::Vector3d& sensor_
   return std::min(config.wall_min_rise, kBeamReachShare * reach);
 }
 
+/// How much of a wall segment's length shows its height: the total width of the columns
+/// (kSupportColumn wide, along the wall) whose points rise `min_height` or more. One beam's arc
+/// on the ceiling far ahead plus a post beside it spans a wall's extent and height, but shows
+/// the height in one column only.
+double SupportedLength(const PointList& points, const std::vector<int>& indices,
+                       const Eigen::Vector3d& dir, const Eigen::Vector3d& up, double min_height) {
+  constexpr double kSupportColumn = 0.25;             // m
+  std::map<long, std::pair<double, double>> columns;  // column -> lowest, highest point
+  for (int i : indices) {
+    const Eigen::Vector3d p = points[i].cast<double>();
+    const long column = static_cast<long>(std::floor(dir.dot(p) / kSupportColumn));
+    const double h = up.dot(p);
+    const auto it = columns.find(column);
+    if (it == columns.end()) {
+      columns.emplace(column, std::make_pair(h, h));
+    } else {
+      it->second.first = std::min(it->second.first, h);
+      it->second.second = std::max(it->second.second, h);
+    }
+  }
+  double supported = 0.0;
+  for (const auto& c : columns)
+    if (c.second.second - c.second.first >= min_height) supported += kSupportColumn;
+  return supported;
+}
+
 /// Refits a segment, orients it to the sensor and fills the extent; false to drop it.
 bool MakeSegment(const PointList& points, const std::vector<int>& indices, bool horizontal,
                  const Eigen::Vector3d& up, const Eigen::Vector3d& sensor_origin,
@@ -96,6 +123,9 @@ bool MakeSegment(const PointList& points, const std::vector<int>& indices, bool 
       (s_max - s_min < config.min_segment_length || h_max - h_min < config.min_segment_height))
     return false;
   if (!horizontal && h_max - up.dot(sensor_origin) < RequiredRise(plane, sensor_origin, config))
+    return false;
+  if (!horizontal && SupportedLength(points, indices, dir, up, config.min_segment_height) <
+                         config.min_segment_support)
     return false;
   const Eigen::Vector3d c = fit->centroid;
   out.plane = plane;
