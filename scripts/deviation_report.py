@@ -178,6 +178,8 @@ def main(argv=None):
     ap.add_argument("--title", default="")
     ap.add_argument("--path", help="a TUM file of the robot's poses in the bim frame (the "
                     "plan's path; default: the S-Graph's keyframes under the final merge)")
+    ap.add_argument("--truth-path", help="with --scenario: a TUM file of the robot's true poses "
+                    "in the bim frame; added walls never in view are counted apart")
     args = ap.parse_args(argv)
     with open(args.deviations) as f:
         data = json.load(f)
@@ -200,7 +202,13 @@ def main(argv=None):
                          lambda w, out: snapshot_png(walls, doors, path, w, out))
     print(summary(walls, doors))
     if args.scenario:
-        truth = deviation_truth.compare(walls, args.scenario, doors)
+        truth_path = None
+        if args.truth_path:
+            with open(args.truth_path) as f:
+                truth_path = deviation_truth.thin_path(
+                    [line.split()[:3] for line in f if line.strip() and not line.startswith("#")])
+        truth = deviation_truth.compare(walls, args.scenario, doors,
+                                        truth_path)
         with open(os.path.join(args.out, "truth.json"), "w") as f:
             json.dump(truth, f, indent=2)
         print(deviation_truth.format_summary(truth))

@@ -91,6 +91,37 @@ def test_bcf_is_valid_bcf_2_1_with_a_topic_per_wall_off_the_plan(tmp_path):
                                    if w["guid"] and w["status"] in ("MOVED", "NOT_BUILT"))
 
 
+def test_ifcopenshells_bcf_library_reads_every_topic(tmp_path):
+    """A second implementation: bcf-client, IfcOpenShell's BCF library (Bonsai's BCF manager
+    reads files with it), loads the zip and finds each topic's title, labels, the wall's
+    GlobalId selected in its viewpoint, a camera looking at the wall and the snapshot."""
+    bcfxml = pytest.importorskip("bcf.v2.bcfxml", reason="bcf-client not in the venv (make setup)")
+    _, out = report(tmp_path)
+    expected = {w["guid"]: w for w in WALLS if w["guid"] and w["status"] in ("MOVED", "NOT_BUILT")}
+    with bcfxml.BcfXml.load(str(out / "deviations.bcf")) as bcf:
+        assert bcf.version.version_id == "2.1"
+        topics = list(bcf.topics.values())
+        assert len(topics) == 5
+        selected = []
+        for t in topics:
+            m = t.markup.topic
+            assert "As-built deviation" in m.labels and m.title
+            status = next(label for label in m.labels if label != "As-built deviation")
+            assert status in ("MOVED", "NOT_BUILT", "EXTRA")
+            (vp,) = t.viewpoints.values()
+            info = vp.visualization_info
+            sel = []  # an EXTRA wall has no IFC element to select
+            if info.components and info.components.selection:
+                sel = info.components.selection.component
+            selected += [c.ifc_guid for c in sel]
+            assert [expected[c.ifc_guid]["status"] for c in sel] in ([], [status])
+            cam = info.perspective_camera
+            look = (cam.camera_direction.x, cam.camera_direction.y, cam.camera_direction.z)
+            assert abs(sum(v * v for v in look) - 1.0) < 1e-3
+            assert vp.snapshot[:8] == PNG
+    assert sorted(selected) == sorted(expected)
+
+
 def test_topics_keep_their_guids_across_reruns(tmp_path):
     _, first = report(tmp_path / "a")
     _, second = report(tmp_path / "b")
@@ -130,6 +161,34 @@ def test_truth_comparison(tmp_path):
     assert abs(r["offset_rmse_m"] - (0.01 ** 2 / 2) ** 0.5) < 1e-9
     assert abs(r["angle_rmse_deg"] - (0.5 ** 2 / 2) ** 0.5) < 1e-9
     assert (r["extra_found"], r["extra_walls"], r["extra_unexplained"]) == (1, 2, 0)
+
+
+def test_an_added_wall_never_in_view_is_counted_apart(tmp_path):
+    """H6's partition in room 105, which the bag ends before, is not "missed": given the true
+    path, the judge counts an added wall only when 1 m of it had a clear sight line."""
+    walls = [wall(0, "p_a", "AS_PLANNED", start=(0, 0), end=(0, 4)),
+             wall(1, "p_b", "AS_PLANNED", start=(4, 0), end=(4, 4))]
+    door = {"name": "d1", "doorway_id": 0, "guid": "", "status": "PRESENT", "wall_id": 1,
+            "position": [4.0, 2.0], "width_m": 0.9}
+    scenario = tmp_path / "s.yaml"
+
+    def judge(path, doors=(), removed=False):
+        scenario.write_text(
+            "scene:\n  deviations:\n"
+            "    - {type: add_wall, start: [6, 1], end: [6, 3], thickness: 0.1}\n" +
+            ("    - {type: remove_wall, wall: p_b}\n" if removed else ""))
+        r = deviation_truth.compare(walls, str(scenario), list(doors), path)
+        return r["extra_walls"], len(r["extra_not_in_view"])
+
+    inside = deviation_truth.thin_path([[0.0, 2.0, 2.0], [1.0, 2.0, 2.1]])
+    assert judge(inside) == (0, 1)  # behind p_b
+    assert judge(inside, [door]) == (1, 0)  # seen through the door
+    assert judge(inside, removed=True) == (1, 0)  # p_b not built
+    assert judge([(5.0, 2.0)]) == (1, 0)  # in its room
+    assert judge([(5.0, 30.0)]) == (0, 1)  # beyond the LiDAR's range
+    assert judge(None) == (1, 0)  # no true path: every added wall counts
+    r = deviation_truth.compare(walls, str(scenario), [door], inside)
+    assert "EXTRA found 0 of 1" in deviation_truth.format_summary(r)
 
 
 def test_report_on_a_bag_that_never_localized_fails_cleanly(tmp_path):
