@@ -19,6 +19,7 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "estimate_wall_deviations", c.estimate_wall_deviations);
   Read(pnh, "wall_deviation_offset_sigma", c.wall_deviation_offset_sigma);
   Read(pnh, "wall_deviation_angle_sigma_deg", c.wall_deviation_angle_sigma_deg);
+  Read(pnh, "wall_turn_release_deg", c.wall_turn_release_deg);
   Read(pnh, "prior_translation_sigma", c.prior_translation_sigma);
   Read(pnh, "prior_yaw_sigma_deg", c.prior_yaw_sigma_deg);
   Read(pnh, "optimize_sgraph", c.optimize_sgraph);

@@ -70,6 +70,15 @@ struct MergeSolution {
   Eigen::Isometry3d BimTMap() const;
 };
 
+/// Where the walls' turn states start (SolveMerge, before the solve). `turns`: per wall, the turns
+/// (rad, about z, plan to build) its matched S-planes show under the current B_x_M. A wall whose
+/// mean turn differs from the median over the walls (a yaw error of B_x_M turns every wall alike)
+/// by more than `release` starts at that difference, unless its state already stands at least
+/// half-way there. From zero, its Cauchy prior (σ 0.1°, steepest within a few σ) holds a wall
+/// turned 4° at the plan, and its S-planes pull the pose's yaw instead; far out, the prior is flat.
+std::map<int, Eigen::Vector2d> ReleasedTurns(const std::map<int, std::vector<double>>& turns,
+                                             double release, std::map<int, Eigen::Vector2d> starts);
+
 /// Builds the iS-Graph problem in one ceres::Problem and solves it (SPARSE_NORMAL_CHOLESKY on
 /// SuiteSparse); B_x_M's covariance with ceres::Covariance (SPARSE_QR on SuiteSparse).
 ///   A-Graph: agraph::AGraphProblem::AddTo (BIM priors, wall-centre and doorway factors).
@@ -86,7 +95,8 @@ struct MergeSolution {
 /// are not in the graphs are skipped. The A-Graph must be valid (agraph::ValidateAGraph).
 /// `initial_deviations` (wall id -> offset, angle): where the wall deviation states start (the
 /// previous solve's; zero for the walls not in it), so a wall off the plan need not be found
-/// again from the plan on every revision.
+/// again from the plan on every revision; a wall seen turned is started at its turn
+/// (ReleasedTurns, config.wall_turn_release_deg).
 MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_graph,
                          const MatchPairs& pairs, const Eigen::Vector3d& initial,
                          const Eigen::Vector3d& prior, double z, const MergerConfig& config,

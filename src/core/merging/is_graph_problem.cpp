@@ -8,8 +8,11 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "is_graphs/agraph/agraph_problem.h"
 #include "is_graphs/geometry/se3.h"
@@ -65,6 +68,30 @@ Eigen::Isometry3d MergeSolution::BimTMap() const {
   return geometry::IsometryFromXYYaw(bim_x_map.x(), bim_x_map.y(), bim_x_map.z(), z);
 }
 
+std::map<int, Eigen::Vector2d> ReleasedTurns(const std::map<int, std::vector<double>>& turns,
+                                             double release,
+                                             std::map<int, Eigen::Vector2d> starts) {
+  std::vector<std::pair<int, double>> mean;
+  for (const auto& [wall, t] : turns) {
+    if (t.empty()) continue;
+    double sum = 0.0;
+    for (double a : t) sum += a;
+    mean.emplace_back(wall, sum / static_cast<double>(t.size()));
+  }
+  if (mean.size() < 3) return starts;  // no median to tell a turned wall from a turned pose
+  std::vector<double> sorted;
+  for (const auto& m : mean) sorted.push_back(m.second);
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  for (const auto& [wall, a] : mean) {
+    const double turn = a - median;
+    if (std::abs(turn) <= release) continue;
+    Eigen::Vector2d& start = starts.try_emplace(wall, Eigen::Vector2d::Zero()).first->second;
+    if (!(std::abs(start.y() - turn) < 0.5 * std::abs(turn))) start.y() = turn;
+  }
+  return starts;
+}
+
 MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_graph,
                          const MatchPairs& pairs, const Eigen::Vector3d& initial,
                          const Eigen::Vector3d& prior, double z, const MergerConfig& config,
@@ -100,7 +127,26 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
       held.insert(block);
     }
   };
-  WallDeviationBlocks deviations(a_graph, config, initial_deviations);
+  std::map<int, Eigen::Vector2d> starts = initial_deviations;
+  if (config.estimate_wall_deviations) {
+    WallDeviationBlocks walls(a_graph, config, initial_deviations);
+    std::map<int, std::vector<double>> turns;  // per wall, the turns its S-planes show
+    for (const auto& [s_id, a_ids] : pairs.surfaces) {
+      const auto pl = s.planes.find(s_id);
+      if (pl == s.planes.end()) continue;
+      const Eigen::Vector3d n_b = geometry::RotationZ(initial.z()) * pl->second.n;
+      for (int a_id : a_ids) {
+        if (a_id < 0 || a_id >= static_cast<int>(a_graph.surfaces.size())) continue;
+        const Eigen::Vector3d& n_a = a_graph.surfaces[a_id].plane.normal;
+        const int wall = walls.WallOf(a_id);
+        if (wall < 0 || n_b.head<2>().dot(n_a.head<2>()) <= 0.0) continue;
+        turns[wall].push_back(
+            std::atan2(n_a.x() * n_b.y() - n_a.y() * n_b.x(), n_a.head<2>().dot(n_b.head<2>())));
+      }
+    }
+    starts = ReleasedTurns(turns, config.wall_turn_release_deg * kDegToRad, std::move(starts));
+  }
+  WallDeviationBlocks deviations(a_graph, config, starts);
   const int num_surfaces = static_cast<int>(a_graph.surfaces.size());
   const int num_rooms = static_cast<int>(a_graph.rooms.size());
   std::vector<std::pair<int, int>> surface_pairs, room_pairs;

@@ -15,6 +15,7 @@ std::string MergerConfig::Validate() const {
       {"match_huber", match_huber},
       {"wall_deviation_offset_sigma", wall_deviation_offset_sigma},
       {"wall_deviation_angle_sigma_deg", wall_deviation_angle_sigma_deg},
+      {"wall_turn_release_deg", wall_turn_release_deg},
       {"prior_translation_sigma", prior_translation_sigma},
       {"prior_yaw_sigma_deg", prior_yaw_sigma_deg},
       {"max_solver_time", max_solver_time},
