@@ -128,8 +128,8 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
     }
   };
   std::map<int, Eigen::Vector2d> starts = initial_deviations;
+  WallDeviationBlocks deviations(a_graph, config, starts);  // reads `starts` as blocks are made
   if (config.estimate_wall_deviations) {
-    WallDeviationBlocks walls(a_graph, config, initial_deviations);
     std::map<int, std::vector<double>> turns;  // per wall, the turns its S-planes show
     for (const auto& [s_id, a_ids] : pairs.surfaces) {
       const auto pl = s.planes.find(s_id);
@@ -138,7 +138,7 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
       for (int a_id : a_ids) {
         if (a_id < 0 || a_id >= static_cast<int>(a_graph.surfaces.size())) continue;
         const Eigen::Vector3d& n_a = a_graph.surfaces[a_id].plane.normal;
-        const int wall = walls.WallOf(a_id);
+        const int wall = deviations.WallOf(a_id);
         if (wall < 0 || n_b.head<2>().dot(n_a.head<2>()) <= 0.0) continue;
         turns[wall].push_back(
             std::atan2(n_a.x() * n_b.y() - n_a.y() * n_b.x(), n_a.head<2>().dot(n_b.head<2>())));
@@ -146,7 +146,6 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
     }
     starts = ReleasedTurns(turns, config.wall_turn_release_deg * kDegToRad, std::move(starts));
   }
-  WallDeviationBlocks deviations(a_graph, config, starts);
   const int num_surfaces = static_cast<int>(a_graph.surfaces.size());
   const int num_rooms = static_cast<int>(a_graph.rooms.size());
   std::vector<std::pair<int, int>> surface_pairs, room_pairs;
