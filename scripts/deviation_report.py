@@ -170,6 +170,13 @@ def summary(walls, doors=()):
     return "\n".join(lines)
 
 
+def read_tum_txy(path):
+    """A TUM file's rows as [t, x, y] (comment lines skipped)."""
+    with open(path) as f:
+        return [[float(v) for v in line.split()[:3]] for line in f
+                if line.strip() and not line.startswith("#")]
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("deviations")
@@ -185,8 +192,7 @@ def main(argv=None):
         data = json.load(f)
     walls, path = data["walls"], data.get("path", [])
     if args.path:
-        with open(args.path) as f:
-            path = [[float(v) for v in line.split()[:3]] for line in f if line.strip()]
+        path = read_tum_txy(args.path)
     unnamed = [w["wall_id"] for w in walls if w["wall_id"] >= 0 and not w["guid"]]
     if unnamed:
         print("deviation_report: warning: %d walls have no IFC GlobalId (A-Graph ids %s): "
@@ -202,13 +208,9 @@ def main(argv=None):
                          lambda w, out: snapshot_png(walls, doors, path, w, out))
     print(summary(walls, doors))
     if args.scenario:
-        truth_path = None
-        if args.truth_path:
-            with open(args.truth_path) as f:
-                truth_path = deviation_truth.thin_path(
-                    [line.split()[:3] for line in f if line.strip() and not line.startswith("#")])
-        truth = deviation_truth.compare(walls, args.scenario, doors,
-                                        truth_path)
+        truth_path = deviation_truth.thin_path(read_tum_txy(args.truth_path)) \
+            if args.truth_path else None
+        truth = deviation_truth.compare(walls, args.scenario, doors, truth_path)
         with open(os.path.join(args.out, "truth.json"), "w") as f:
             json.dump(truth, f, indent=2)
         print(deviation_truth.format_summary(truth))

@@ -89,9 +89,9 @@ def _as_built(walls, truth, extras, doors):
         cx, cy = 0.5 * (sx + ex) + off * nx, 0.5 * (sy + ey) + off * ny
         hx, hy = 0.5 * (ex - sx), 0.5 * (ey - sy)
         hx, hy = hx * math.cos(a) - hy * math.sin(a), hx * math.sin(a) + hy * math.cos(a)
-        moved = [(g[0][0] + off * nx, g[0][1] + off * ny) for g in gaps.get(w["wall_id"], [])]
-        out.append(((cx - hx, cy - hy), (cx + hx, cy + hy),
-                    [(c, g[1]) for c, g in zip(moved, gaps.get(w["wall_id"], []))]))
+        openings = [((c[0] + off * nx, c[1] + off * ny), half)
+                    for c, half in gaps.get(w["wall_id"], [])]
+        out.append(((cx - hx, cy - hy), (cx + hx, cy + hy), openings))
     out += [(tuple(e["start"]), tuple(e["end"]), []) for e in extras]
     return out
 
@@ -118,10 +118,10 @@ def in_view(added, built, path, max_range=20.0, step=0.25, min_length=1.0):
 
 
 def thin_path(path, spacing=0.5):
-    """The path's (x, y) every `spacing` m (rows of t x y ... or x y)."""
+    """The path's (x, y) every `spacing` m (rows of t, x, y, ...)."""
     out = []
     for row in path:
-        xy = (float(row[-2]), float(row[-1])) if len(row) == 2 else (float(row[1]), float(row[2]))
+        xy = (float(row[1]), float(row[2]))
         if not out or math.hypot(xy[0] - out[-1][0], xy[1] - out[-1][1]) >= spacing:
             out.append(xy)
     return out
@@ -203,7 +203,9 @@ def format_summary(r):
                 r["deviations"], len(r["missed"]), r["missed"], 100 * r["offset_rmse_m"],
                 r["angle_rmse_deg"], r["moved_measured"], len(r["false_moved"]), r["false_moved"],
                 len(r["false_not_built"]), r["false_not_built"], r["extra_found"],
-                r["extra_walls"], (", in view; %d never in view" % len(r["extra_not_in_view"]))
-                if r.get("extra_not_in_view") else "", r["extra_unexplained"], r["closed_found"], r["closed_doors"],
+                r["extra_walls"],
+                (", in view; %d never in view" % len(r["extra_not_in_view"]))
+                if r.get("extra_not_in_view") else "",
+                r["extra_unexplained"], r["closed_found"], r["closed_doors"],
                 r["closed_reported_present"], len(r["false_closed"]), r["false_closed"],
                 r["doors_present"], r["doors_not_seen"]))
