@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "cost_test_util.h"
@@ -44,6 +45,16 @@ TEST(WallDeviationPriorCost, HandComputed) {
   EXPECT_NEAR(r(1), -0.5, 1e-12);  // −1° at σ 2°
   const Vector2d zero(0.0, 0.0);
   EXPECT_LT(testing::Residual(*cost, {zero.data()}).norm(), 1e-15);
+}
+
+// A wall seen turned keeps its offset prior and has none on its turn (σ = +infinity).
+TEST(WallDeviationPriorCost, AnInfiniteSigmaIsNoPrior) {
+  std::unique_ptr<ceres::CostFunction> cost(
+      WallDeviationPriorCost::Create(0.05, std::numeric_limits<double>::infinity()));
+  const Vector2d deviation(0.1, 4.0 * kDeg);
+  const Eigen::VectorXd r = testing::Residual(*cost, {deviation.data()});
+  EXPECT_NEAR(r(0), 2.0, 1e-12);
+  EXPECT_EQ(r(1), 0.0);
 }
 
 TEST(DeviatedSurfaceMatchCost, ZeroDeviationIsSurfaceMatchCost) {

@@ -70,14 +70,18 @@ struct MergeSolution {
   Eigen::Isometry3d BimTMap() const;
 };
 
-/// Where the walls' turn states start (SolveMerge, before the solve). `turns`: per wall, the turns
-/// (rad, about z, plan to build) its matched S-planes show under the current B_x_M. A wall whose
-/// mean turn differs from the median over the walls (a yaw error of B_x_M turns every wall alike)
-/// by more than `release` starts at that difference, unless its state already stands at least
-/// half-way there. From zero, its Cauchy prior (σ 0.1°, steepest within a few σ) holds a wall
-/// turned 4° at the plan, and its S-planes pull the pose's yaw instead; far out, the prior is flat.
-std::map<int, Eigen::Vector2d> ReleasedTurns(const std::map<int, std::vector<double>>& turns,
-                                             double release, std::map<int, Eigen::Vector2d> starts);
+/// The walls seen turned off the plan (SolveMerge, before the solve). `turns`: per wall, the
+/// turns (rad, about z, plan to build) its matched S-planes show under the current B_x_M. A wall
+/// whose mean turn differs from the median over the walls (a yaw error of B_x_M turns every wall
+/// alike) by more than `release` is returned with that difference; fewer than 3 walls give no
+/// median and nothing.
+std::map<int, double> TurnedWalls(const std::map<int, std::vector<double>>& turns, double release);
+
+/// Where the walls' turn states start: each wall of `turned` (TurnedWalls) at its turn, unless its
+/// state already stands at least half-way there; the others as in `starts`. From zero, a Cauchy
+/// prior (σ 0.1°, steepest within a few σ) would hold a wall turned 4° at the plan.
+std::map<int, Eigen::Vector2d> ReleasedTurns(const std::map<int, double>& turned,
+                                             std::map<int, Eigen::Vector2d> starts);
 
 /// Builds the iS-Graph problem in one ceres::Problem and solves it (SPARSE_NORMAL_CHOLESKY on
 /// SuiteSparse); B_x_M's covariance with ceres::Covariance (SPARSE_QR on SuiteSparse).
@@ -88,7 +92,9 @@ std::map<int, Eigen::Vector2d> ReleasedTurns(const std::map<int, std::vector<dou
 ///     nodes used by the match are held constant.
 ///   Match: SurfaceMatchCost per surface pair (DeviatedSurfaceMatchCost for a surface of a wall
 ///     when config.estimate_wall_deviations, with one WallDeviationPriorCost per such wall under
-///     a Cauchy loss), RoomMatchCost / CorridorMatchCost per room pair (Huber),
+///     a Cauchy loss, none on the turn of a wall seen turned: TurnedWalls), RoomMatchCost /
+///     CorridorMatchCost per room pair (Huber; DeviatedRoomMatchCost, the A-room's centre moved
+///     with its walls' offsets (RoomCentreShifts), when its walls have deviation states),
 ///     TransformPriorCost at `prior` (the matcher's guess).
 /// The pair residuals are against the plan (a deviation does not make a pair consistent).
 /// `initial` and `prior` are (x, y, yaw); `z` is the height of M in B. Pairs naming nodes that

@@ -25,8 +25,9 @@ struct MergerConfig {
   double wall_deviation_offset_sigma{0.03};    // m, > surface_offset_sigma / 2 (Validate)
   double wall_deviation_angle_sigma_deg{0.1};  // ° (a free turn trades with the pose's yaw)
   // A wall whose matched S-planes stand turned more than this (°) from its plan, against the
-  // median turn of the matched walls, starts its turn state there: from zero its stiff prior
-  // would hold it at the plan and its S-planes would pull the pose's yaw instead. 90: never.
+  // median turn of the matched walls, starts its turn state there with no prior on the turn:
+  // its stiff prior would hold it near the plan (from zero entirely; from the turn a Cauchy tail
+  // still pulls ~0.3° on 4°) and its S-planes would pull the pose's yaw instead. 90: never.
   double wall_turn_release_deg{1.0};
 
   // Weak prior on B_x_M at the matcher's guess (keeps a badly conditioned merge in place).

@@ -17,10 +17,12 @@
 #include "is_graphs/agraph/agraph_problem.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/merging/cost/corridor_match_cost.h"
+#include "is_graphs/merging/cost/deviated_room_match_cost.h"
 #include "is_graphs/merging/cost/deviated_surface_match_cost.h"
 #include "is_graphs/merging/cost/room_match_cost.h"
 #include "is_graphs/merging/cost/surface_match_cost.h"
 #include "is_graphs/merging/cost/transform_prior_cost.h"
+#include "is_graphs/merging/room_centre_shift.h"
 #include "is_graphs/sgraph/backend_window.h"
 #include "is_graphs/sgraph/sgraph_factors.h"
 #include "wall_deviation_blocks.h"
@@ -68,9 +70,7 @@ Eigen::Isometry3d MergeSolution::BimTMap() const {
   return geometry::IsometryFromXYYaw(bim_x_map.x(), bim_x_map.y(), bim_x_map.z(), z);
 }
 
-std::map<int, Eigen::Vector2d> ReleasedTurns(const std::map<int, std::vector<double>>& turns,
-                                             double release,
-                                             std::map<int, Eigen::Vector2d> starts) {
+std::map<int, double> TurnedWalls(const std::map<int, std::vector<double>>& turns, double release) {
   std::vector<std::pair<int, double>> mean;
   for (const auto& [wall, t] : turns) {
     if (t.empty()) continue;
@@ -78,14 +78,20 @@ std::map<int, Eigen::Vector2d> ReleasedTurns(const std::map<int, std::vector<dou
     for (double a : t) sum += a;
     mean.emplace_back(wall, sum / static_cast<double>(t.size()));
   }
-  if (mean.size() < 3) return starts;  // no median to tell a turned wall from a turned pose
+  if (mean.size() < 3) return {};  // no median to tell a turned wall from a turned pose
   std::vector<double> sorted;
   for (const auto& m : mean) sorted.push_back(m.second);
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   const double median = sorted[sorted.size() / 2];
-  for (const auto& [wall, a] : mean) {
-    const double turn = a - median;
-    if (std::abs(turn) <= release) continue;
+  std::map<int, double> out;
+  for (const auto& [wall, a] : mean)
+    if (std::abs(a - median) > release) out[wall] = a - median;
+  return out;
+}
+
+std::map<int, Eigen::Vector2d> ReleasedTurns(const std::map<int, double>& turned,
+                                             std::map<int, Eigen::Vector2d> starts) {
+  for (const auto& [wall, turn] : turned) {
     Eigen::Vector2d& start = starts.try_emplace(wall, Eigen::Vector2d::Zero()).first->second;
     if (!(std::abs(start.y() - turn) < 0.5 * std::abs(turn))) start.y() = turn;
   }
@@ -128,7 +134,9 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
     }
   };
   std::map<int, Eigen::Vector2d> starts = initial_deviations;
-  WallDeviationBlocks deviations(a_graph, config, starts);  // reads `starts` as blocks are made
+  std::set<int> free_turns;  // walls seen turned: their turns have no prior
+  // Reads `starts` and `free_turns` as blocks are made.
+  WallDeviationBlocks deviations(a_graph, config, starts, free_turns);
   if (config.estimate_wall_deviations) {
     std::map<int, std::vector<double>> turns;  // per wall, the turns its S-planes show
     for (const auto& [s_id, a_ids] : pairs.surfaces) {
@@ -144,7 +152,10 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
             std::atan2(n_a.x() * n_b.y() - n_a.y() * n_b.x(), n_a.head<2>().dot(n_b.head<2>())));
       }
     }
-    starts = ReleasedTurns(turns, config.wall_turn_release_deg * kDegToRad, std::move(starts));
+    const std::map<int, double> turned =
+        TurnedWalls(turns, config.wall_turn_release_deg * kDegToRad);
+    for (const auto& t : turned) free_turns.insert(t.first);
+    starts = ReleasedTurns(turned, std::move(starts));
   }
   const int num_surfaces = static_cast<int>(a_graph.surfaces.size());
   const int num_rooms = static_cast<int>(a_graph.rooms.size());
@@ -187,11 +198,25 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
                                      [&](const sgraph::Room& r) { return r.id == s_id; });
     const Eigen::Vector2d across = sgraph::CorridorAcross(s_graph, room);
     const double sigma = RoomCentreSigma(room, config);
-    ceres::CostFunction* cost = room.type == sgraph::RoomType::kCorridor && across.norm() > 0.5
-                                    ? CorridorMatchCost::Create(across, sigma)
-                                    : RoomMatchCost::Create(sigma);
-    problem.AddResidualBlock(cost, new ceres::HuberLoss(config.match_huber), xi.data(),
-                             c->second.data(), a_problem.RoomCentre(a_id));
+    const bool corridor = room.type == sgraph::RoomType::kCorridor && across.norm() > 0.5;
+    // The A-room's centre moves with the offsets of its walls (those with a state).
+    std::vector<Eigen::Vector2d> per_offset;
+    std::vector<double*> blocks = {xi.data(), c->second.data(), a_problem.RoomCentre(a_id)};
+    if (config.estimate_wall_deviations) {
+      for (const RoomCentreShift& shift : RoomCentreShifts(a_graph, a_graph.rooms[a_id])) {
+        auto block = deviations.blocks().find(shift.wall);
+        if (block == deviations.blocks().end()) continue;
+        per_offset.push_back(shift.per_offset);
+        blocks.push_back(block->second.data());
+      }
+    }
+    ceres::CostFunction* cost =
+        !per_offset.empty()
+            ? DeviatedRoomMatchCost::Create(std::move(per_offset),
+                                            corridor ? across : Eigen::Vector2d::Zero(), sigma)
+        : corridor ? CorridorMatchCost::Create(across, sigma)
+                   : RoomMatchCost::Create(sigma);
+    problem.AddResidualBlock(cost, new ceres::HuberLoss(config.match_huber), blocks);
   }
   for (double* block : held) problem.SetParameterBlockConstant(block);
 

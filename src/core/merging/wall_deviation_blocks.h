@@ -7,7 +7,9 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <set>
 #include <vector>
 
 #include "is_graphs/agraph/agraph.h"
@@ -18,14 +20,17 @@ namespace is_graphs {
 namespace merging {
 
 /// The as-built deviation states of the A-walls that have a matched surface, made on demand,
-/// each with its Cauchy prior at the plan.
+/// each with its Cauchy prior at the plan; a wall in `free_turns` (seen turned) has none on its
+/// turn.
 class WallDeviationBlocks {
  public:
   WallDeviationBlocks(const agraph::AGraph& a_graph, const MergerConfig& config,
-                      const std::map<int, Eigen::Vector2d>& initial)
+                      const std::map<int, Eigen::Vector2d>& initial,
+                      const std::set<int>& free_turns)
       : a_graph_(a_graph),
         config_(config),
         initial_(initial),
+        free_turns_(free_turns),
         wall_of_(a_graph.surfaces.size(), -1) {
     if (!config.estimate_wall_deviations) return;
     for (const agraph::Wall& w : a_graph.walls) {
@@ -44,7 +49,8 @@ class WallDeviationBlocks {
     return n.norm() > 1e-9 ? Eigen::Vector2d(n.normalized()) : Eigen::Vector2d::UnitX();
   }
   /// The wall's deviation block (offset, angle), added to `problem` with its prior (under a
-  /// Cauchy loss) the first time; counts the pairs resting on it.
+  /// Cauchy loss; on the offset alone for a wall in `free_turns`) the first time; counts the
+  /// pairs resting on it.
   double* Block(int wall, ceres::Problem& problem) {
     const auto start = initial_.find(wall);
     auto [it, added] = blocks_.try_emplace(
@@ -53,9 +59,12 @@ class WallDeviationBlocks {
     ++pairs_[wall];
     if (added) {
       problem.AddParameterBlock(it->second.data(), 2);
+      constexpr double kFree = std::numeric_limits<double>::infinity();
+      const bool free_turn = free_turns_.count(wall) > 0;
       problem.AddResidualBlock(
-          WallDeviationPriorCost::Create(config_.wall_deviation_offset_sigma,
-                                         config_.wall_deviation_angle_sigma_deg * M_PI / 180.0),
+          WallDeviationPriorCost::Create(
+              config_.wall_deviation_offset_sigma,
+              free_turn ? kFree : config_.wall_deviation_angle_sigma_deg * M_PI / 180.0),
           new ceres::CauchyLoss(1.0), it->second.data());
     }
     return it->second.data();
@@ -68,6 +77,7 @@ class WallDeviationBlocks {
   const agraph::AGraph& a_graph_;
   const MergerConfig& config_;
   const std::map<int, Eigen::Vector2d>& initial_;
+  const std::set<int>& free_turns_;
   std::vector<int> wall_of_;
   std::map<int, Eigen::Vector2d> blocks_;  // wall id -> (offset, angle); stable addresses
   std::map<int, int> pairs_;

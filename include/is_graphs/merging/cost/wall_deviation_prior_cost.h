@@ -29,7 +29,8 @@ class WallDeviationPriorCost {
     return true;
   }
 
-  /// σ must be positive (MergerConfig::Validate checks them).
+  /// σ must be positive (MergerConfig::Validate checks them); +infinity: no prior on that part
+  /// (its residual is 0; SolveMerge's walls seen turned).
   static ceres::CostFunction* Create(double offset_sigma, double angle_sigma) {
     return new ceres::AutoDiffCostFunction<WallDeviationPriorCost, 2, 2>(
         new WallDeviationPriorCost(offset_sigma, angle_sigma));
