@@ -223,10 +223,11 @@ def evaluate_scenario(name, yaml_path, bag, note, replay, out_dir):
     with open(graph) as f:
         storeys = json.load(f).get("storeys", [])
     est, odom = r["_est"], r["_odom"]
-    if storeys and est is not None:
+    if storeys:  # a run never localized still walked its storeys: "never" on each
         truth = r["_truth"]
-        r["storeys"] = per_storey(storeys, truth.timestamps, truth.positions_xyz, est.timestamps,
-                                  est.positions_xyz, odom.timestamps, odom.positions_xyz)
+        est_t, est_xyz = (est.timestamps, est.positions_xyz) if est is not None else ([], [])
+        r["storeys"] = per_storey(storeys, truth.timestamps, truth.positions_xyz, est_t, est_xyz,
+                                  odom.timestamps, odom.positions_xyz)
     trajectory_plot(name, r["_truth"], r["_series"], graph, storey,
                     os.path.join(out_dir, name, "trajectory.png"))
     error_plot(name, r["_t0"], r["_series"], os.path.join(out_dir, name, "error.png"))

@@ -51,6 +51,8 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "unique_min_wall_share", c.unique_min_wall_share);
   ros_params::Read(pnh, "unique_min_walls", c.unique_min_walls);
   ros_params::Read(pnh, "stair_height_tolerance", c.stair_height_tolerance);
+  ros_params::Read(pnh, "storey_level_tolerance", c.storey_level_tolerance);
+  ros_params::Read(pnh, "storey_level_tolerance_per_m", c.storey_level_tolerance_per_m);
   ros_params::Read(pnh, "sight_viewpoints", c.sight_viewpoints);
   ros_params::Read(pnh, "sight_door_margin", c.sight_door_margin);
   ros_params::Read(pnh, "surface_min_length", c.surface_min_length);

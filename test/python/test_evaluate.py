@@ -218,3 +218,6 @@ def test_per_storey_time_to_localize(tmp_path):
                                     "D5": {"localizer_storey": "0", "storeys": rows}})
     assert "| M9 | EG | 0.0 | 5.0 | 5.0 |" in md and "| M9 | 1.OG | 20.0 | never | – |" in md
     assert not any("D5" in line for line in md)
+    # A run never localized (M6, the duplex: AMBIGUOUS throughout) still lists the storeys walked.
+    rows = evaluate.per_storey(storeys, t, truth, [], [], t, truth[:, :2])
+    assert [(r["storey"], r["localized_after_s"]) for r in rows] == [("EG", None), ("1.OG", None)]

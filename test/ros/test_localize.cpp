@@ -14,6 +14,8 @@
 //                          elevation at or below its height + 5 cm);
 //   ~storey_in_doubt       floors of one plan: some AMBIGUOUS graph_match has competing storeys,
 //                          the true one among its own and those;
+//   ~ambiguous_names_storey every AMBIGUOUS graph_match names the truth's storey as its own
+//                          (a storey told by the heights walked, the motion still in doubt);
 //   ~expect_localized      localized within ~max_seconds_to_localize of the bag start, still
 //                          localized at the end (unless a kidnap), at least ~min_poses poses,
 //                          the APE (x, y, no alignment) RMSE / max, the z RMSE and the yaw
@@ -75,6 +77,7 @@ struct Contract {
   int true_storey_id{-1};                 // -1: not checked (a storey given to the localizer)
   std::vector<double> storey_elevations;  // by storey id; empty: not checked
   bool storey_in_doubt{false};
+  bool ambiguous_names_storey{false};  // every AMBIGUOUS answer's own storey is the truth's
   double kidnap_window{0.0};
   double max_seconds_to_relocalize{0.0};  // 0: relocalizing is not required
   double max_seconds_to_ambiguous{0.0};   // 0: not a symmetric building
@@ -99,6 +102,7 @@ Contract ReadContract() {
   pnh.param("max_wrong_z", c.max_wrong_z, c.max_wrong_z);
   pnh.param("true_storey_id", c.true_storey_id, c.true_storey_id);
   pnh.param("storey_in_doubt", c.storey_in_doubt, c.storey_in_doubt);
+  pnh.param("ambiguous_names_storey", c.ambiguous_names_storey, c.ambiguous_names_storey);
   pnh.param("storey_elevations", c.storey_elevations, c.storey_elevations);
   pnh.param("kidnap_window", c.kidnap_window, c.kidnap_window);
   pnh.param("max_seconds_to_relocalize", c.max_seconds_to_relocalize, c.max_seconds_to_relocalize);
@@ -385,8 +389,15 @@ TEST_F(LocalizeTest, NeverAWrongStorey) {
         best = static_cast<int>(i);
     return best;
   };
-  int unique = 0, wrong = 0, doubting = 0;
+  int unique = 0, wrong = 0, doubting = 0, ambiguous_elsewhere = 0;
   for (const auto& m : matches_) {
+    if (c_.ambiguous_names_storey && m.status == is_graphs::GraphMatch::AMBIGUOUS &&
+        m.storey_id != storey_at(m.header.stamp)) {
+      ++ambiguous_elsewhere;
+      std::printf("[ %s ] AMBIGUOUS at t = %.1f s names storey %d, the truth stands on %d\n",
+                  c_.scenario.c_str(), m.header.stamp.toSec() - bag_start_, m.storey_id,
+                  storey_at(m.header.stamp));
+    }
     if (m.status == is_graphs::GraphMatch::UNIQUE) {
       ++unique;
       const int truth = storey_at(m.header.stamp);
@@ -407,6 +418,11 @@ TEST_F(LocalizeTest, NeverAWrongStorey) {
       "AMBIGUOUS about the storey\n",
       c_.scenario.c_str(), matches_.size(), unique, wrong, doubting);
   EXPECT_EQ(wrong, 0) << Where() << wrong << " UNIQUE matches on another storey";
+  if (c_.ambiguous_names_storey) {
+    EXPECT_EQ(ambiguous_elsewhere, 0)
+        << Where() << ambiguous_elsewhere
+        << " AMBIGUOUS matches name another storey than the truth's (the heights walked name it)";
+  }
   if (c_.storey_in_doubt) {
     EXPECT_GT(doubting, 0) << Where()
                            << "floors of one plan, but no AMBIGUOUS match names the competing "

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <memory>
@@ -194,9 +195,17 @@ class GraphMatcher {
   std::vector<Corner> a_corners_;
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
-  std::optional<Pose2> last_checked_;  // the last UNIQUE motion the walls agreed with
-  int level_{0};                       // of the S-Graph level matched last
-  int a_storeys_{0};                   // storeys in the A-Graph
+  std::optional<Pose2> last_checked_;        // the last UNIQUE motion the walls agreed with
+  int level_{0};                             // of the S-Graph level matched last
+  int a_storeys_{0};                         // storeys in the A-Graph
+  std::map<int, double> storey_elevations_;  // A-Graph storey id -> elevation
+  // The storeys the levels walked leave possible for the current one (StoreysFittingLevels);
+  // empty: any. Candidates and proposals on others are not made.
+  std::vector<int> storeys_walked_;
+  bool StoreyWalkable(int storey) const {
+    return storeys_walked_.empty() || std::find(storeys_walked_.begin(), storeys_walked_.end(),
+                                                storey) != storeys_walked_.end();
+  }
   MatchStats stats_;
   /// The same matcher with doubt_centre_tolerance (null: no doubt). Owning it makes a
   /// GraphMatcher move-only: one per thread, as said above.

@@ -61,6 +61,12 @@ struct MatcherConfig {
   // until it settles. Matching there named the storey below with the robot on the floor above
   // (M4, 4 times).
   double stair_height_tolerance{0.5};
+  // A storey from the stairs alone: with levels walked, the current level's storey must have
+  // storeys as far above or below as the other levels, within this (m) plus
+  // storey_level_tolerance_per_m of the height between them (StoreysFittingLevels); candidates
+  // and proposals on other storeys are not made. A large value: any storey.
+  double storey_level_tolerance{0.15};
+  double storey_level_tolerance_per_m{0.03};
   double sight_door_margin{0.15};  // a sight line this far beyond a doorway's half-width is
                                    // through the wall (door_margin is for the walked path)
   // --- proposals from the first scans (CornerProposals; before a room is closed) ---

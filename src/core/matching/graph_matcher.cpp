@@ -11,6 +11,7 @@
 
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/input_checks.h"
+#include "is_graphs/matching/storeys_walked.h"
 #include "is_graphs/sgraph/levels.h"
 
 namespace is_graphs {
@@ -75,6 +76,9 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   a_corners_ = FindCorners(FacingSurfaces(graph), config_.proposal_corner_reach);
   a_sha256_ = graph.source.sha256;
   a_storeys_ = static_cast<int>(graph.storeys.size());
+  storey_elevations_.clear();
+  for (const agraph::Storey& st : graph.storeys) storey_elevations_[st.id] = st.elevation;
+  storeys_walked_.clear();
   has_agraph_ = true;
   cache_.clear();
   last_best_.reset();
@@ -192,6 +196,8 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     out.warnings.push_back(why.str());
     return out;
   }
+  storeys_walked_.clear();
+  if (doubter_) doubter_->storeys_walked_.clear();
   if (!sgraph::HasLevels(graph)) return MatchLevel(graph);
   const int level = sgraph::CurrentLevel(graph);
   if (level != level_) {
@@ -208,6 +214,13 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
                            "matching there (load the whole building for runs over stairs)");
     return out;
   }
+  // The heights walked between levels rule out storeys without one as far above or below.
+  std::map<int, double> heights;  // level -> its first keyframe's height in M
+  for (const auto& k : graph.keyframes) heights.try_emplace(k.level, k.pose.translation().z());
+  storeys_walked_ =
+      StoreysFittingLevels(storey_elevations_, heights, level, config_.storey_level_tolerance,
+                           config_.storey_level_tolerance_per_m);
+  if (doubter_) doubter_->storeys_walked_ = storeys_walked_;
   return MatchLevel(sgraph::LevelSubgraph(graph, level));
 }
 
@@ -445,6 +458,15 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
     cache[s_rooms[i].id] = {s_rooms[i], candidates[i]};
   }
   cache_ = std::move(cache);
+  if (!storeys_walked_.empty()) {  // the levels walked leave only some storeys (Match)
+    for (auto& list : candidates) {
+      list.erase(std::remove_if(list.begin(), list.end(),
+                                [&](const RoomCandidate& c) {
+                                  return !StoreyWalkable(a_rooms_[c.a_room].storey);
+                                }),
+                 list.end());
+    }
+  }
 
   // 2. Global candidates from seeds (best local candidates first), skipping seeds that an
   // earlier hypothesis already holds under the same motion.

@@ -69,6 +69,8 @@ std::string MatcherConfig::Validate() const {
       {"deviation_max_offset", deviation_max_offset, 0.0, 5.0, true},
       {"deviation_max_angle_deg", deviation_max_angle_deg, 0.0, 45.0, true},
       {"stair_height_tolerance", stair_height_tolerance, 0.0, 100.0, true},
+      {"storey_level_tolerance", storey_level_tolerance, 0.0, 1e6, true},
+      {"storey_level_tolerance_per_m", storey_level_tolerance_per_m, 0.0, 1.0, false},
       {"proposal_cross_check_max_rooms", static_cast<double>(proposal_cross_check_max_rooms), 1.0,
        1e6, false},
   };
