@@ -137,7 +137,7 @@ def write_reports(results, missing, out_dir):
         md += ["", "## Per storey (whole building loaded)", "",
                "From the robot's arrival on a storey (the truth's height, first on the storey it "
                "starts on) to its first pose in B within 0.5 m (x-y) and 1 m (z) of the truth "
-               "there; 0 when it came up the stairs already localized."] + [""] + per_storey
+               "there; 0 when it came up or down the stairs already localized."] + [""] + per_storey
     md += ["", "## Baselines (x-y RMSE / max [m]; yaw RMSE / max [°])", ""] + baselines(results)
     if notes:
         md += ["", "## Notes", ""] + notes

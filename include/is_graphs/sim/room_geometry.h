@@ -14,6 +14,15 @@ namespace sim {
 /// rooms there are.
 Result<int> FindRoom(const agraph::AGraph& graph, int storey, const std::string& name);
 
+/// A room anywhere in the building (routes across storeys, issue 22): "name @ storey" (the
+/// storey by name or index) on that storey; else `name` on `preferred_storey`, else on the one
+/// other storey that has it (an error names the storeys when several do).
+Result<int> FindRoomInBuilding(const agraph::AGraph& graph, int preferred_storey,
+                               const std::string& name);
+
+/// Convex hull of points (counter-clockwise, no repeated or collinear points).
+std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points);
+
 /// A point well inside the room's polygon: its centroid when that is inside and at least
 /// `margin` from the edges, else the interior grid point farthest from the edges.
 Eigen::Vector2d RoomInteriorPoint(const agraph::Room& room, double margin = 0.6);

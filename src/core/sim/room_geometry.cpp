@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "is_graphs/agraph/agraph_queries.h"
+
 namespace is_graphs {
 namespace sim {
 
@@ -30,6 +32,55 @@ Result<int> FindRoom(const agraph::AGraph& graph, int storey, const std::string&
   }
   return Result<int>::Error("no room named '" + name + "' on storey " + std::to_string(storey) +
                             " (rooms: " + (list.empty() ? "none" : list) + ")");
+}
+
+Result<int> FindRoomInBuilding(const agraph::AGraph& graph, int preferred_storey,
+                               const std::string& name) {
+  const std::size_t at = name.rfind(" @ ");
+  if (at != std::string::npos) {
+    const Result<int> storey = agraph::FindStorey(graph, name.substr(at + 3));
+    if (!storey.ok()) return Result<int>::Error("'" + name + "': " + storey.error());
+    return FindRoom(graph, storey.value(), name.substr(0, at));
+  }
+  const Result<int> here = FindRoom(graph, preferred_storey, name);
+  if (here.ok()) return here;
+  std::vector<int> found;
+  std::string storeys;
+  for (const agraph::Storey& s : graph.storeys) {
+    if (s.id == preferred_storey) continue;
+    const Result<int> there = FindRoom(graph, s.id, name);
+    if (!there.ok()) continue;
+    found.push_back(there.value());
+    storeys += (storeys.empty() ? "'" : ", '") + s.name + "'";
+  }
+  if (found.size() == 1) return Result<int>::Ok(found.front());
+  if (found.size() > 1) {
+    return Result<int>::Error("room '" + name + "' is on storeys " + storeys + ": name one as '" +
+                              name + " @ <storey>'");
+  }
+  return Result<int>::Error(here.error() + ", nor on any other storey");
+}
+
+std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> p) {
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (p.size() < 3) return p;
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {  // lower hull
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 1e-12) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {  // upper hull
+    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 1e-12) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);
+  return hull;
 }
 
 bool PointInPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {

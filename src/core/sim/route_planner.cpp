@@ -14,9 +14,12 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// True when the segment's samples (away from its ends) lie inside the polygon with clearance.
+using Polygons = std::vector<std::vector<Eigen::Vector2d>>;
+
+// True when the segment's samples (away from its ends) lie inside the polygon with clearance,
+// and outside each obstacle by the clearance.
 bool Visible(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& a,
-             const Eigen::Vector2d& b, double clearance) {
+             const Eigen::Vector2d& b, double clearance, const Polygons& obstacles = {}) {
   const double length = (b - a).norm();
   const int n = std::max(2, static_cast<int>(std::ceil(length / 0.05)));
   for (int i = 1; i < n; ++i) {
@@ -24,8 +27,29 @@ bool Visible(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& a,
     if (s < clearance || length - s < clearance) continue;  // the ends may be near a doorway
     const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(i) / n);
     if (!PointInPolygon(poly, p) || DistanceToPolygonEdges(poly, p) < clearance) return false;
+    for (const auto& o : obstacles) {
+      if (PointInPolygon(o, p) || DistanceToPolygonEdges(o, p) < clearance) return false;
+    }
   }
   return true;
+}
+
+// Each corner of a polygon moved `inset` along its bisector (inward for a counter-clockwise
+// polygon and positive inset; outward with a negative one).
+std::vector<Eigen::Vector2d> InsetCorners(const std::vector<Eigen::Vector2d>& polygon,
+                                          double inset) {
+  std::vector<Eigen::Vector2d> out;
+  const std::size_t m = polygon.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    const Eigen::Vector2d prev = (polygon[i] - polygon[(i + m - 1) % m]).normalized();
+    const Eigen::Vector2d next = (polygon[(i + 1) % m] - polygon[i]).normalized();
+    // Counter-clockwise polygon: the inward normal of an edge direction e is (-e.y, e.x).
+    Eigen::Vector2d bisector =
+        Eigen::Vector2d(-prev.y(), prev.x()) + Eigen::Vector2d(-next.y(), next.x());
+    if (bisector.norm() < 1e-6) continue;
+    out.push_back(polygon[i] + inset * bisector.normalized());
+  }
+  return out;
 }
 
 // Shortest path on a node set with visibility edges; returns node indices after `from`.
@@ -88,8 +112,8 @@ Crossing MakeCrossing(const agraph::AGraph& g, const agraph::Doorway& d, double 
 
 std::vector<Eigen::Vector2d> PathInsideRoom(const std::vector<Eigen::Vector2d>& polygon,
                                             const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                                            double clearance) {
-  if (polygon.size() < 3 || Visible(polygon, a, b, clearance)) return {b};
+                                            double clearance, const Polygons& obstacles) {
+  if (polygon.size() < 3 || Visible(polygon, a, b, clearance, obstacles)) return {b};
   // Nodes: a, b, and each polygon corner moved inward along its bisector.
   std::vector<Eigen::Vector2d> nodes{a, b};
   const std::size_t m = polygon.size();
@@ -106,8 +130,16 @@ std::vector<Eigen::Vector2d> PathInsideRoom(const std::vector<Eigen::Vector2d>& 
       if (PointInPolygon(polygon, p)) nodes.push_back(p);
     }
   }
+  for (const auto& o : obstacles) {  // around an obstacle: its corners pushed outward
+    for (double outset : {-(1.5 * clearance + 0.1), -(3.0 * clearance + 0.3)}) {
+      for (const Eigen::Vector2d& p : InsetCorners(o, outset)) {
+        if (PointInPolygon(polygon, p)) nodes.push_back(p);
+      }
+    }
+  }
   const std::vector<int> path = Dijkstra(static_cast<int>(nodes.size()), 0, 1, [&](int u, int v) {
-    return Visible(polygon, nodes[u], nodes[v], clearance) ? (nodes[u] - nodes[v]).norm() : kInf;
+    return Visible(polygon, nodes[u], nodes[v], clearance, obstacles) ? (nodes[u] - nodes[v]).norm()
+                                                                      : kInf;
   });
   if (path.empty()) return {b};  // no better idea: walk straight (the caller's scene decides)
   std::vector<Eigen::Vector2d> out;
@@ -116,7 +148,7 @@ std::vector<Eigen::Vector2d> PathInsideRoom(const std::vector<Eigen::Vector2d>& 
 }
 
 Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryConfig& config,
-                        const std::string& field) {
+                        const std::string& field, const std::vector<StairPath>& all_stairs) {
   using R = Result<Route>;
   Route route;
   const TrajectoryConfig& c = config;
@@ -143,23 +175,27 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
     return R::Ok(route);
   }
 
-  // Rooms to visit, as ids; the start room first.
+  // Rooms to visit, as ids; the start room first. Each is looked up from the storey before it.
   std::vector<int> targets;
   std::vector<std::string> fields;
-  for (std::size_t i = 0; i < c.rooms.size(); ++i) {
-    const std::string f = field + ".rooms[" + std::to_string(i) + "]";
-    const Result<int> room = FindRoom(g, storey, c.rooms[i]);
-    if (!room.ok()) return R::Error(f + ": " + room.error());
-    targets.push_back(room.value());
-    fields.push_back(f + " ('" + c.rooms[i] + "')");
-  }
+  int on_storey = storey;
   if (!c.start.room.empty()) {
     const Result<int> room = FindRoom(g, storey, c.start.room);
     if (!room.ok()) return R::Error(field + ".start.room: " + room.error());
-    if (room.value() != targets.front()) {
-      targets.insert(targets.begin(), room.value());
-      fields.insert(fields.begin(), field + ".start.room ('" + c.start.room + "')");
+    targets.push_back(room.value());
+    fields.push_back(field + ".start.room ('" + c.start.room + "')");
+  }
+  for (std::size_t i = 0; i < c.rooms.size(); ++i) {
+    const std::string f = field + ".rooms[" + std::to_string(i) + "]";
+    const Result<int> room = targets.empty() ? FindRoom(g, storey, c.rooms[i])
+                                             : FindRoomInBuilding(g, on_storey, c.rooms[i]);
+    if (!room.ok()) return R::Error(f + ": " + room.error());
+    on_storey = g.rooms[room.value()].storey;
+    if (!targets.empty() && targets.back() == room.value() && targets.size() == 1 && i == 0) {
+      continue;  // the start room named again first
     }
+    targets.push_back(room.value());
+    fields.push_back(f + " ('" + c.rooms[i] + "')");
   }
   Eigen::Vector2d position = RoomInteriorPoint(g.rooms[targets.front()]);
   if (c.start.pose) {
@@ -170,11 +206,17 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
     }
   }
 
-  // Doorway graph of the storey.
+  // Stairs only for a route whose rooms span storeys (one storey's routes are as they were).
+  bool across = false;
+  for (int t : targets) across = across || g.rooms[t].storey != g.rooms[targets.front()].storey;
+  const std::vector<StairPath> no_stairs;
+  const std::vector<StairPath>& stairs = across ? all_stairs : no_stairs;
+
+  // Doorway graph of the building: doorways join rooms of one storey, stairs rooms of two.
   std::vector<Crossing> crossings;
   for (const agraph::Doorway& d : g.doorways) {
     if (d.rooms.size() != 2 || d.rooms[0] == d.rooms[1]) continue;
-    if (g.rooms[d.rooms[0]].storey != storey || g.rooms[d.rooms[1]].storey != storey) continue;
+    if (g.rooms[d.rooms[0]].storey != g.rooms[d.rooms[1]].storey) continue;
     crossings.push_back(MakeCrossing(g, d, c.doorway_clearance));
   }
   const int n_rooms = static_cast<int>(g.rooms.size());
@@ -194,11 +236,41 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
   for (const Crossing& x : crossings) {
     cost[x.room_a][x.room_b] = cost[x.room_b][x.room_a] = edge(x.room_a, x.room_b);
   }
+  for (const StairPath& st : stairs) {
+    const double length =
+        (RoomInteriorPoint(g.rooms[st.lower_room]) - st.points.front().head<2>()).norm() +
+        st.Length() +
+        (st.points.back().head<2>() - RoomInteriorPoint(g.rooms[st.upper_room])).norm();
+    double& e = cost[st.lower_room][st.upper_room];
+    e = cost[st.upper_room][st.lower_room] = std::min(e, length);
+  }
+  // The stair footprints a walk inside a room on a storey keeps clear of.
+  auto obstacles_on = [&](int on) {
+    Polygons out;
+    for (const StairPath& st : stairs) {
+      if ((st.lower_storey == on || st.upper_storey == on) && st.footprint.size() >= 3) {
+        out.push_back(st.footprint);
+      }
+    }
+    return out;
+  };
+  // The stair between rooms u and v (the shortest), or nullptr.
+  auto stair_between = [&](int u, int v) -> const StairPath* {
+    const StairPath* best = nullptr;
+    for (const StairPath& st : stairs) {
+      if (!((st.lower_room == u && st.upper_room == v) ||
+            (st.lower_room == v && st.upper_room == u)))
+        continue;
+      if (!best || st.Length() < best->Length()) best = &st;
+    }
+    return best;
+  };
 
   route.start = Eigen::Vector3d(position.x(), position.y(), c.start.pose ? c.start.pose->z() : 0.0);
-  auto walk_to = [&](const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& goal,
-                     bool pause) {
-    const std::vector<Eigen::Vector2d> path = PathInsideRoom(polygon, position, goal);
+  auto walk_to = [&](int room, const Eigen::Vector2d& goal, bool pause) {
+    const agraph::Room& r = g.rooms[room];
+    const std::vector<Eigen::Vector2d> path =
+        PathInsideRoom(r.polygon, position, goal, 0.3, obstacles_on(r.storey));
     for (std::size_t i = 0; i < path.size(); ++i) {
       route.waypoints.push_back({path[i], std::nullopt, pause && i + 1 == path.size()});
     }
@@ -210,33 +282,56 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
         Dijkstra(n_rooms, targets[i - 1], targets[i], [&](int u, int v) { return cost[u][v]; });
     if (rooms.empty()) {
       return R::Error(fields[i] + ": not reachable from '" + g.rooms[targets[i - 1]].name +
-                      "' through the doorways of storey " + std::to_string(storey));
+                      "' through the doorways" + (stairs.empty() ? "" : " and stairs") +
+                      " of the building (from storey " +
+                      std::to_string(g.rooms[targets[i - 1]].storey) + ")");
     }
     int current = targets[i - 1];
     std::string leg = g.rooms[current].name;
-    for (int next : rooms) {
-      const Crossing* best = nullptr;
-      double best_cost = kInf;
-      for (const Crossing& x : crossings) {
-        if (!((x.room_a == current && x.room_b == next) ||
-              (x.room_a == next && x.room_b == current))) {
-          continue;
+    for (std::size_t k = 0; k < rooms.size(); ++k) {
+      const int next = rooms[k];
+      // Into the next room's interior point when it is a room to visit, or when the walk goes on
+      // through a doorway; on to a stair (or off one) straight.
+      const bool via_centre =
+          next == targets[i] ||
+          (g.rooms[next].storey == g.rooms[current].storey &&
+           (k + 1 == rooms.size() || g.rooms[rooms[k + 1]].storey == g.rooms[next].storey));
+      if (g.rooms[next].storey != g.rooms[current].storey) {
+        const StairPath& st = *stair_between(current, next);
+        std::vector<Eigen::Vector3d> steps = st.points;
+        if (st.lower_room != current) std::reverse(steps.begin(), steps.end());
+        walk_to(current, steps.front().head<2>(), false);
+        for (std::size_t j = 1; j < steps.size(); ++j)
+          route.waypoints.push_back({steps[j].head<2>(), std::nullopt, false});
+        position = steps.back().head<2>();
+        ++route.stairs_taken;
+        leg += std::string(" -> [") + (st.lower_room == current ? "up " : "down ") + st.name +
+               "] -> " + g.rooms[next].name + " (" + g.storeys[g.rooms[next].storey].name + ")";
+      } else {
+        const Crossing* best = nullptr;
+        double best_cost = kInf;
+        for (const Crossing& x : crossings) {
+          if (!((x.room_a == current && x.room_b == next) ||
+                (x.room_a == next && x.room_b == current))) {
+            continue;
+          }
+          const Eigen::Vector2d near = x.room_a == current ? x.side_a : x.side_b;
+          const double cst = (near - position).norm();
+          if (cst < best_cost) best_cost = cst, best = &x;
         }
-        const Eigen::Vector2d near = x.room_a == current ? x.side_a : x.side_b;
-        const double cst = (near - position).norm();
-        if (cst < best_cost) best_cost = cst, best = &x;
+        const Eigen::Vector2d near = best->room_a == current ? best->side_a : best->side_b;
+        const Eigen::Vector2d far = best->room_a == current ? best->side_b : best->side_a;
+        walk_to(current, near, false);
+        route.waypoints.push_back({far, std::nullopt, false});  // straight through the doorway
+        position = far;
+        leg += " -> [" + g.doorways[best->doorway].name + "] -> " + g.rooms[next].name;
       }
-      const Eigen::Vector2d near = best->room_a == current ? best->side_a : best->side_b;
-      const Eigen::Vector2d far = best->room_a == current ? best->side_b : best->side_a;
-      walk_to(g.rooms[current].polygon, near, false);
-      route.waypoints.push_back({far, std::nullopt, false});  // straight through the doorway
-      position = far;
-      walk_to(g.rooms[next].polygon, RoomInteriorPoint(g.rooms[next]), next == targets[i]);
-      leg += " -> [" + g.doorways[best->doorway].name + "] -> " + g.rooms[next].name;
+      if (via_centre) walk_to(next, RoomInteriorPoint(g.rooms[next]), next == targets[i]);
       current = next;
     }
     route.description.push_back(leg);
   }
+  route.end_storey = g.rooms[targets.back()].storey;
   if (!route.waypoints.empty() && !c.start.pose) {
     const Eigen::Vector2d d = route.waypoints.front().position - route.start.head<2>();
     if (d.norm() > 1e-3) route.start.z() = std::atan2(d.y(), d.x());

@@ -7,6 +7,7 @@
 
 #include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/agraph/ifc_conversion.h"
+#include "is_graphs/sim/stair_paths.h"
 
 namespace is_graphs {
 namespace sim {
@@ -236,14 +237,33 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
                      std::to_string(sim->storey) + " '" + sim->graph.storeys[sim->storey].name +
                      "'");
 
-  // Route (on the planned A-Graph) and the floor under its start.
-  const Result<Route> route = PlanRoute(sim->graph, sim->storey, config.trajectory);
+  // Route (on the planned A-Graph, its rooms on any storey: up and down the stairs the mesh
+  // has) and the floor under its start.
+  std::vector<StairPath> stairs;
+  if (config.trajectory.waypoints.empty()) {
+    std::vector<std::string> skipped;
+    stairs = FindStairPaths(mesh.value(), sim->graph, StairPathConfig(), &skipped);
+    for (const StairPath& st : stairs) {
+      sim->log.push_back("stairs: " + st.name + " from '" + sim->graph.rooms[st.lower_room].name +
+                         "' (" + sim->graph.storeys[st.lower_storey].name + ") up to '" +
+                         sim->graph.rooms[st.upper_room].name + "' (" +
+                         sim->graph.storeys[st.upper_storey].name + ")");
+    }
+    for (const std::string& line : skipped) sim->log.push_back("stairs: not walked: " + line);
+  }
+  const Result<Route> route =
+      PlanRoute(sim->graph, sim->storey, config.trajectory, "trajectory", stairs);
   if (!route.ok()) return R::Error(route.error());
   sim->route = route.value();
   for (const std::string& line : sim->route.description) sim->log.push_back("route: " + line);
+  if (sim->route.stairs_taken > 0 && !config.trajectory.follow_terrain) {
+    sim->config.trajectory.follow_terrain = true;  // a route up or down stairs walks on them
+    sim->log.push_back("route: takes " + std::to_string(sim->route.stairs_taken) +
+                       " stair(s): trajectory.follow_terrain on");
+  }
   if (config.kidnap) {  // the route after the carry
     const Result<Route> second = PlanRoute(
-        sim->graph, sim->storey, config.kidnap->AsTrajectory(config.trajectory), "kidnap");
+        sim->graph, sim->storey, config.kidnap->AsTrajectory(config.trajectory), "kidnap", stairs);
     if (!second.ok()) return R::Error(second.error());
     sim->kidnap_route = second.value();
     for (const std::string& line : second.value().description) {
@@ -266,7 +286,7 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
   sim->embree = std::move(embree).value();
 
   // The routes must be walkable in the scene as built (on stairs: checked on the terrain, below).
-  std::string e = config.trajectory.follow_terrain
+  std::string e = sim->config.trajectory.follow_terrain
                       ? ""
                       : CheckRoute(*sim->embree, sim->route, sim->floor_z, "trajectory");
   if (e.empty() && sim->kidnap_route) {
