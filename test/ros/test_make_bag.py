@@ -246,6 +246,9 @@ def test_dropouts_and_kidnap_in_the_bag(tmp_path):
      "sensor.dropouts[0]"),
     ("building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\n"
      "kidnap: {time: 2, rooms: [Lobby]}\n", "kidnap.rooms[0]"),
+    ("building: bim/tower.ifc\nstorey: Second floor\n"
+     "trajectory: {rooms: [\"2.07\", \"0.03 @ Basement\"]}\n",
+     "trajectory.rooms[1]: '0.03 @ Basement': unknown storey \"Basement\" (storeys: 0"),
 ])
 def test_bad_input_fails_cleanly(tmp_path, yaml_text, field):
     scenario = tmp_path / "bad.yaml"
@@ -255,6 +258,23 @@ def test_bad_input_fails_cleanly(tmp_path, yaml_text, field):
     assert r.returncode == 2
     assert field in r.stderr
     assert not out.exists() and not (tmp_path / "bad.bag.tmp").exists()
+
+
+KIT_EDC = os.path.join(ROOT, "..", "shared", "bim", "KIT-EDC_with_SB.ifc")
+
+
+@pytest.mark.skipif(not os.path.exists(KIT_EDC), reason="no ../shared/bim/KIT-EDC_with_SB.ifc")
+def test_a_route_across_storeys_without_stairs_is_named(tmp_path):
+    # KIT-EDC's IFC has three storeys and no IfcStair: rooms on two of them cannot be joined.
+    scenario = tmp_path / "kit.yaml"
+    scenario.write_text(f"building: {os.path.abspath(KIT_EDC)}\nstorey: EG\n"
+                        "trajectory: {rooms: [\"45\", \"27 @ 1.OG\"]}\n")
+    out = tmp_path / "kit.bag"
+    r = make_bag(str(scenario), str(out), "--root", ROOT)
+    assert r.returncode == 2
+    assert "trajectory.rooms[1] ('27 @ 1.OG'): not reachable from '45'" in r.stderr
+    assert "no walkable stair was found in the building's mesh" in r.stderr
+    assert not out.exists()
 
 
 if __name__ == "__main__":

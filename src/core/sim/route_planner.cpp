@@ -281,10 +281,18 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
     const std::vector<int> rooms =
         Dijkstra(n_rooms, targets[i - 1], targets[i], [&](int u, int v) { return cost[u][v]; });
     if (rooms.empty()) {
+      const int from = g.rooms[targets[i - 1]].storey, to = g.rooms[targets[i]].storey;
+      std::string why;
+      if (from != to && stairs.empty()) {
+        why =
+            ": no walkable stair was found in the building's mesh (IfcStair / IfcStairFlight "
+            "with treads; make_bag's 'stairs: not walked' lines say why)";
+      } else if (from != to) {
+        why = " (storey '" + g.storeys[from].name + "' to '" + g.storeys[to].name + "')";
+      }
       return R::Error(fields[i] + ": not reachable from '" + g.rooms[targets[i - 1]].name +
                       "' through the doorways" + (stairs.empty() ? "" : " and stairs") +
-                      " of the building (from storey " +
-                      std::to_string(g.rooms[targets[i - 1]].storey) + ")");
+                      " of the building (from storey " + std::to_string(from) + ")" + why);
     }
     int current = targets[i - 1];
     std::string leg = g.rooms[current].name;
