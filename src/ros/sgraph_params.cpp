@@ -89,6 +89,7 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "level_tolerance", f.levels.tolerance);
   Read(pnh, "level_min_rise", f.levels.min_rise);
   Read(pnh, "level_settle", f.levels.settle);
+  Read(pnh, "level_landing_length", f.levels.landing_length);
   Read(pnh, "doorway_detect", f.doorways.detect);
   Read(pnh, "doorway_max_step", f.doorways.max_step);
   Read(pnh, "doorway_min_wall_height", f.doorways.min_wall_height);

@@ -55,6 +55,43 @@ TEST(StoreysFittingLevels, ALandingTakenForALevelRulesOutNothing) {
             std::vector<int>({1, 2}));
 }
 
+// AC11: Keller -3, Erdgeschoss 0, 1. and 2. Obergeschoss (twins) 3 and 6, Dachgeschoss 9.
+const std::map<int, double> kAc11 = {{0, -3.0}, {1, 0.0}, {2, 3.0}, {3, 6.0}, {4, 9.0}};
+
+TEST(StoreysFromKnownLevels, UpFromAStoreyMatchedTheNextFollowsFromTheHeight) {
+  // Localized on the ground floor (level 0 matched on storey 1), up 3.06 m (2 % long): only the
+  // first floor, though every storey but the top has one 3 m above.
+  const std::map<int, double> levels = {{0, 0.03}, {1, 3.09}};
+  EXPECT_EQ(StoreysFittingLevels(kAc11, levels, 1, kTolerance, kPerMetre),
+            std::vector<int>({1, 2, 3, 4}));
+  const auto known = StoreysFromKnownLevels(kAc11, levels, {{0, 1}}, 1, kTolerance, kPerMetre);
+  ASSERT_TRUE(known.has_value());
+  EXPECT_EQ(*known, std::vector<int>({2}));
+  // Down again from the first floor matched there (level 1 on storey 2): the ground floor.
+  const auto down = StoreysFromKnownLevels(kAc11, levels, {{1, 2}}, 0, kTolerance, kPerMetre);
+  ASSERT_TRUE(down.has_value());
+  EXPECT_EQ(*down, std::vector<int>({1}));
+}
+
+TEST(StoreysFromKnownLevels, NoLevelKnownIsNoConstraintAndNoStoreyThereIsEmpty) {
+  const std::map<int, double> levels = {{0, 0.03}, {1, 2.05}};
+  EXPECT_FALSE(StoreysFromKnownLevels(kAc11, levels, {}, 1, kTolerance, kPerMetre).has_value());
+  // Only the current level known (its own match): no constraint from another.
+  EXPECT_FALSE(
+      StoreysFromKnownLevels(kAc11, levels, {{1, 2}}, 1, kTolerance, kPerMetre).has_value());
+  // A landing 2 m up from the ground floor: no storey there.
+  const auto landing = StoreysFromKnownLevels(kAc11, levels, {{0, 1}}, 1, kTolerance, kPerMetre);
+  ASSERT_TRUE(landing.has_value());
+  EXPECT_TRUE(landing->empty());
+  // Two levels known agree on the third (both constrain it).
+  const std::map<int, double> three = {{0, 0.0}, {1, 3.0}, {2, 6.05}};
+  EXPECT_EQ(*StoreysFromKnownLevels(kAc11, three, {{0, 1}, {1, 2}}, 2, kTolerance, kPerMetre),
+            std::vector<int>({3}));
+  // ... and a wrong one known on level 1 leaves nothing rather than a wrong storey.
+  EXPECT_TRUE(
+      StoreysFromKnownLevels(kAc11, three, {{0, 1}, {1, 3}}, 2, kTolerance, kPerMetre)->empty());
+}
+
 }  // namespace
 }  // namespace matching
 }  // namespace is_graphs

@@ -36,6 +36,45 @@ TEST(SGraphLevels, AHalfStoreyLandingIsNotALevel) {
   EXPECT_EQ(t.size(), 1);
 }
 
+TEST(SGraphLevels, ALandingTwoThirdsUpMovesToTheFloorTheClimbEndsOn) {
+  // AC11's stair: three flights of a 3 m storey, the second landing 2 m up (beyond min_rise:
+  // taken for a level when stood on), then the last flight to the floor 3 m up.
+  LevelTracker t;
+  t.Add(0.5);
+  t.Add(0.51);
+  for (double z : {1.0, 1.5, 2.0}) EXPECT_EQ(t.Add(z), 0) << "on the flight: " << z;
+  EXPECT_EQ(t.Add(2.5), 0);
+  EXPECT_EQ(t.Add(2.52), 1);  // settled on the landing: a level for now
+  EXPECT_DOUBLE_EQ(t.Height(1), 2.52);
+  EXPECT_EQ(t.Add(3.0), 1);  // the last flight
+  EXPECT_EQ(t.Add(3.5), 1);
+  EXPECT_EQ(t.Add(3.51), 1);  // settled on the floor: the level moves there
+  EXPECT_DOUBLE_EQ(t.Height(1), 3.51);
+  EXPECT_EQ(t.size(), 2);
+  EXPECT_EQ(t.Add(3.49), 1);
+  EXPECT_EQ(t.Add(0.52), 0);  // back down
+
+  // Stood on long enough, a level stays where it is (a mezzanine, then a half flight up).
+  LevelTracker m;
+  m.Add(0.5);
+  m.Add(2.5);
+  EXPECT_EQ(m.Add(2.52), 1);
+  for (int i = 1; i <= 9; ++i) m.Add(Eigen::Vector3d(0.5 * i, 0.0, 2.5));  // 4.5 m walked on it
+  EXPECT_EQ(m.Add(3.5), 1);
+  EXPECT_EQ(m.Add(3.51), 1);
+  EXPECT_DOUBLE_EQ(m.Height(1), 2.52);
+  // Off (landing_length 0): the landing stays the level, as before.
+  LevelConfig off;
+  off.landing_length = 0.0;
+  LevelTracker o(off);
+  o.Add(0.5);
+  o.Add(2.5);
+  o.Add(2.52);
+  o.Add(3.5);
+  o.Add(3.51);
+  EXPECT_DOUBLE_EQ(o.Height(1), 2.52);
+}
+
 TEST(SGraphLevels, ValidateNamesTheField) {
   LevelConfig c;
   EXPECT_EQ(c.Validate(), "");

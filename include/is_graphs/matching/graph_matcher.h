@@ -80,6 +80,7 @@ class GraphMatcher {
   GraphMatch Match(const sgraph::SGraph& graph);
   /// Forgets the S-Graph matched so far (it restarted): no reuse, no previous best motion.
   void ForgetHistory() {
+    level_storeys_.clear();
     cache_.clear();
     last_best_.reset();
     last_checked_.reset();
@@ -202,6 +203,10 @@ class GraphMatcher {
   // The storeys the levels walked leave possible for the current one (StoreysFittingLevels);
   // empty: any. Candidates and proposals on others are not made.
   std::vector<int> storeys_walked_;
+  // The storey of each S-Graph level its latest UNIQUE match named (StoreysFromKnownLevels);
+  // kept across level changes, forgotten with the S-Graph (ForgetHistory) or the A-Graph.
+  std::map<int, int> level_storeys_;
+  GraphMatch Remember(int level, GraphMatch match);
   bool StoreyWalkable(int storey) const {
     return storeys_walked_.empty() || std::find(storeys_walked_.begin(), storeys_walked_.end(),
                                                 storey) != storeys_walked_.end();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <vector>
 
 namespace is_graphs {
@@ -19,6 +20,18 @@ namespace matching {
 std::vector<int> StoreysFittingLevels(const std::map<int, double>& elevations,
                                       const std::map<int, double>& levels, int current,
                                       double tolerance, double per_metre);
+
+/// Issue 22: the storeys the current level can be on, from levels whose storey a UNIQUE match
+/// named (`known`: level -> storey id): storey s fits when, for every known level l other than
+/// `current`, elevation(s) lies within `tolerance` + `per_metre` |h_c − h_l| of
+/// elevation(known[l]) + (h_c − h_l): after a climb from a storey identified, the next one
+/// follows from the height walked, twin floors or not. nullopt (no constraint) when no other
+/// level is known; empty when no storey is at that height (a landing, a walk off the
+/// building's storeys: nothing to match there).
+std::optional<std::vector<int>> StoreysFromKnownLevels(const std::map<int, double>& elevations,
+                                                       const std::map<int, double>& levels,
+                                                       const std::map<int, int>& known, int current,
+                                                       double tolerance, double per_metre);
 
 }  // namespace matching
 }  // namespace is_graphs

@@ -79,6 +79,7 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   storey_elevations_.clear();
   for (const agraph::Storey& st : graph.storeys) storey_elevations_[st.id] = st.elevation;
   storeys_walked_.clear();
+  level_storeys_.clear();
   has_agraph_ = true;
   cache_.clear();
   last_best_.reset();
@@ -198,10 +199,12 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
   }
   storeys_walked_.clear();
   if (doubter_) doubter_->storeys_walked_.clear();
-  if (!sgraph::HasLevels(graph)) return MatchLevel(graph);
+  if (!sgraph::HasLevels(graph)) return Remember(0, MatchLevel(graph));
   const int level = sgraph::CurrentLevel(graph);
   if (level != level_) {
+    const std::map<int, int> known = level_storeys_;  // kept over a climb
     ForgetHistory();
+    level_storeys_ = known;
     level_ = level;
   }
   if (level != 0 && a_storeys_ == 1) {
@@ -215,13 +218,44 @@ GraphMatch GraphMatcher::Match(const sgraph::SGraph& graph) {
     return out;
   }
   // The heights walked between levels rule out storeys without one as far above or below.
-  std::map<int, double> heights;  // level -> its first keyframe's height in M
+  // Level -> its height in M: its floor's where every level has one (a level moved off a
+  // landing has its first keyframes on the landing), else its first keyframe's.
+  std::map<int, double> heights, floors;
   for (const auto& k : graph.keyframes) heights.try_emplace(k.level, k.pose.translation().z());
-  storeys_walked_ =
-      StoreysFittingLevels(storey_elevations_, heights, level, config_.storey_level_tolerance,
-                           config_.storey_level_tolerance_per_m);
+  for (const auto& f : graph.floors) floors[f.id] = f.height;
+  if (std::all_of(heights.begin(), heights.end(),
+                  [&](const auto& h) { return floors.count(h.first) > 0; })) {
+    for (auto& [l, h] : heights) h = floors[l];
+  }
+  // A level whose storey a UNIQUE match named fixes the others by the heights between; else
+  // the heights between the levels alone rule out storeys without one as far above or below.
+  const std::optional<std::vector<int>> from_known =
+      StoreysFromKnownLevels(storey_elevations_, heights, level_storeys_, level,
+                             config_.storey_level_tolerance, config_.storey_level_tolerance_per_m);
+  if (from_known && from_known->empty()) {
+    GraphMatch out;
+    out.a_graph_sha256 = a_sha256_;
+    out.s_graph_revision = graph.revision;
+    out.warnings.push_back("level " + std::to_string(level) +
+                           " lies where no storey of the building is, from the storeys matched "
+                           "on the levels walked before (a landing, or off the building's "
+                           "storeys): not matching there");
+    return out;
+  }
+  if (from_known) storeys_walked_ = *from_known;
+  if (storeys_walked_.empty()) {
+    storeys_walked_ =
+        StoreysFittingLevels(storey_elevations_, heights, level, config_.storey_level_tolerance,
+                             config_.storey_level_tolerance_per_m);
+  }
   if (doubter_) doubter_->storeys_walked_ = storeys_walked_;
-  return MatchLevel(sgraph::LevelSubgraph(graph, level));
+  return Remember(level, MatchLevel(sgraph::LevelSubgraph(graph, level)));
+}
+
+GraphMatch GraphMatcher::Remember(int level, GraphMatch match) {
+  if (match.status == MatchStatus::kUnique && match.storey >= 0)
+    level_storeys_[level] = match.storey;
+  return match;
 }
 
 void GraphMatcher::GateOnWallsSeen(const std::vector<WallSegment>& walls, GraphMatch* out) const {

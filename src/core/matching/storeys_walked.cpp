@@ -35,5 +35,31 @@ std::vector<int> StoreysFittingLevels(const std::map<int, double>& elevations,
   return out;
 }
 
+std::optional<std::vector<int>> StoreysFromKnownLevels(const std::map<int, double>& elevations,
+                                                       const std::map<int, double>& levels,
+                                                       const std::map<int, int>& known, int current,
+                                                       double tolerance, double per_metre) {
+  const auto here = levels.find(current);
+  if (here == levels.end()) return std::nullopt;
+  std::vector<int> out;
+  bool constrained = false;
+  for (const auto& [storey, elevation] : elevations) {
+    bool fits = true;
+    for (const auto& [level, known_storey] : known) {
+      const auto there = levels.find(level);
+      const auto known_elevation = elevations.find(known_storey);
+      if (level == current || there == levels.end() || known_elevation == elevations.end())
+        continue;
+      constrained = true;
+      const double rise = here->second - there->second;  // from the known level to this one
+      const double bound = tolerance + per_metre * std::abs(rise);
+      if (std::abs(elevation - (known_elevation->second + rise)) > bound) fits = false;
+    }
+    if (fits) out.push_back(storey);
+  }
+  if (!constrained) return std::nullopt;
+  return out;
+}
+
 }  // namespace matching
 }  // namespace is_graphs

@@ -11,10 +11,12 @@ std::string LevelConfig::Validate() const {
   if (!(tolerance > 0.0)) return "level_tolerance: must be > 0 m";
   if (!(min_rise > tolerance)) return "level_min_rise: must be > level_tolerance";
   if (!(settle > 0.0 && settle < tolerance)) return "level_settle: must be in (0, level_tolerance)";
+  if (!(landing_length >= 0.0)) return "level_landing_length: must be >= 0 m (0: off)";
   return "";
 }
 
-int LevelTracker::Add(double z) {
+int LevelTracker::Add(const Eigen::Vector3d& position) {
+  const double z = position.z();
   if (heights_.empty()) {
     heights_.push_back(z);
     current_ = 0;
@@ -25,15 +27,31 @@ int LevelTracker::Add(double z) {
       const double d = std::abs(z - heights_[i]);
       if (d < nearest) nearest = d, near = i;
     }
+    const bool settled = has_last_ && std::abs(z - last_z_) <= config_.settle;
     if (nearest <= config_.tolerance) {
       current_ = near;  // back on a level walked before
-    } else if (nearest >= config_.min_rise && has_last_ &&
-               std::abs(z - last_z_) <= config_.settle) {
+      from_ = -1;
+    } else if (nearest >= config_.min_rise && settled) {
+      from_ = current_;
       heights_.push_back(z);  // off the flight, on a new level
       current_ = size() - 1;
+      on_current_ = 0.0;
+    } else if (settled && from_ >= 0 && on_current_ < config_.landing_length &&
+               (z - heights_[current_]) * (heights_[current_] - heights_[from_]) > 0.0) {
+      // The new level was a landing: the climb went on the same way and settled again, as far
+      // from every other level as a new level must be. The level moves there.
+      bool clear = true;
+      for (int i = 0; i < size(); ++i)
+        clear = clear && (i == current_ || std::abs(z - heights_[i]) >= config_.min_rise);
+      if (clear) heights_[current_] = z, on_current_ = 0.0;
     }  // else on the flight: the level it left
   }
+  const double h = heights_[current_];
+  if (has_last_ && std::abs(z - h) <= config_.tolerance &&
+      std::abs(last_z_ - h) <= config_.tolerance)
+    on_current_ += (position.head<2>() - last_xy_).norm();  // walked on it
   last_z_ = z;
+  last_xy_ = position.head<2>();
   has_last_ = true;
   return current_;
 }

@@ -213,7 +213,7 @@ void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& 
     step.translation() *= odometry_scale_;
     kf.pose = prev.pose * step;
   }
-  kf.level = levels_.Add(kf.pose.translation().z());
+  kf.level = levels_.Add(Eigen::Vector3d(kf.pose.translation()));
   keyframes_.push_back(kf);
   clouds_.push_back(std::move(cloud));
   ThinOldCloudsLocked();
