@@ -34,20 +34,26 @@ bool Visible(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& a,
   return true;
 }
 
+// The unit bisector at corner i of a counter-clockwise polygon, pointing inward; zero where
+// the corner is degenerate.
+Eigen::Vector2d InwardBisector(const std::vector<Eigen::Vector2d>& polygon, std::size_t i) {
+  const std::size_t m = polygon.size();
+  const Eigen::Vector2d prev = (polygon[i] - polygon[(i + m - 1) % m]).normalized();
+  const Eigen::Vector2d next = (polygon[(i + 1) % m] - polygon[i]).normalized();
+  // Counter-clockwise polygon: the inward normal of an edge direction e is (-e.y, e.x).
+  const Eigen::Vector2d bisector =
+      Eigen::Vector2d(-prev.y(), prev.x()) + Eigen::Vector2d(-next.y(), next.x());
+  return bisector.norm() < 1e-6 ? Eigen::Vector2d::Zero() : bisector.normalized();
+}
+
 // Each corner of a polygon moved `inset` along its bisector (inward for a counter-clockwise
 // polygon and positive inset; outward with a negative one).
 std::vector<Eigen::Vector2d> InsetCorners(const std::vector<Eigen::Vector2d>& polygon,
                                           double inset) {
   std::vector<Eigen::Vector2d> out;
-  const std::size_t m = polygon.size();
-  for (std::size_t i = 0; i < m; ++i) {
-    const Eigen::Vector2d prev = (polygon[i] - polygon[(i + m - 1) % m]).normalized();
-    const Eigen::Vector2d next = (polygon[(i + 1) % m] - polygon[i]).normalized();
-    // Counter-clockwise polygon: the inward normal of an edge direction e is (-e.y, e.x).
-    Eigen::Vector2d bisector =
-        Eigen::Vector2d(-prev.y(), prev.x()) + Eigen::Vector2d(-next.y(), next.x());
-    if (bisector.norm() < 1e-6) continue;
-    out.push_back(polygon[i] + inset * bisector.normalized());
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d bisector = InwardBisector(polygon, i);
+    if (!bisector.isZero()) out.push_back(polygon[i] + inset * bisector);
   }
   return out;
 }
@@ -116,15 +122,9 @@ std::vector<Eigen::Vector2d> PathInsideRoom(const std::vector<Eigen::Vector2d>& 
   if (polygon.size() < 3 || Visible(polygon, a, b, clearance, obstacles)) return {b};
   // Nodes: a, b, and each polygon corner moved inward along its bisector.
   std::vector<Eigen::Vector2d> nodes{a, b};
-  const std::size_t m = polygon.size();
-  for (std::size_t i = 0; i < m; ++i) {
-    const Eigen::Vector2d prev = (polygon[i] - polygon[(i + m - 1) % m]).normalized();
-    const Eigen::Vector2d next = (polygon[(i + 1) % m] - polygon[i]).normalized();
-    // Counter-clockwise polygon: the inward normal of an edge direction e is (-e.y, e.x).
-    Eigen::Vector2d bisector =
-        Eigen::Vector2d(-prev.y(), prev.x()) + Eigen::Vector2d(-next.y(), next.x());
-    if (bisector.norm() < 1e-6) continue;
-    bisector.normalize();
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d bisector = InwardBisector(polygon, i);
+    if (bisector.isZero()) continue;
     for (double inset : {2.0 * clearance + 0.3, 4.0 * clearance + 0.3}) {
       const Eigen::Vector2d p = polygon[i] + inset * bisector;
       if (PointInPolygon(polygon, p)) nodes.push_back(p);
