@@ -93,6 +93,16 @@ TEST(SimStairPaths, TooNarrowOrLeadingNowhereIsSkippedWithTheReason) {
       << skipped[0];
 }
 
+TEST(SimStairPaths, ABadConfigIsNamed) {
+  const TwoStoreys b;
+  StairPathConfig c;
+  c.max_rise = 0.0;
+  std::vector<std::string> skipped;
+  EXPECT_TRUE(FindStairPaths(b.mesh, b.graph, c, &skipped).empty());
+  ASSERT_EQ(skipped.size(), 1u);
+  EXPECT_NE(skipped[0].find("max_rise: must be in (0, 1] m"), std::string::npos) << skipped[0];
+}
+
 TEST(SimStairPaths, ASpiralIsTooTightToWalk) {
   TwoStoreys b;
   b.mesh.triangles.resize(2);  // the floor only

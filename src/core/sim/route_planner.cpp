@@ -254,6 +254,15 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
     }
     return out;
   };
+  // Whether a room's interior point is clear of its storey's stairs (a stairwell's may lie on
+  // a flight or over the opening: a room passed through is then crossed without it).
+  auto centre_clear = [&](int room) {
+    const Eigen::Vector2d p = RoomInteriorPoint(g.rooms[room]);
+    for (const auto& o : obstacles_on(g.rooms[room].storey)) {
+      if (PointInPolygon(o, p) || DistanceToPolygonEdges(o, p) < 0.3) return false;
+    }
+    return true;
+  };
   // The stair between rooms u and v (the shortest), or nullptr.
   auto stair_between = [&](int u, int v) -> const StairPath* {
     const StairPath* best = nullptr;
@@ -302,7 +311,7 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
       // through a doorway; on to a stair (or off one) straight.
       const bool via_centre =
           next == targets[i] ||
-          (g.rooms[next].storey == g.rooms[current].storey &&
+          (g.rooms[next].storey == g.rooms[current].storey && centre_clear(next) &&
            (k + 1 == rooms.size() || g.rooms[rooms[k + 1]].storey == g.rooms[next].storey));
       if (g.rooms[next].storey != g.rooms[current].storey) {
         const StairPath& st = *stair_between(current, next);

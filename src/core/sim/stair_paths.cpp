@@ -155,6 +155,10 @@ std::vector<StairPath> FindStairPaths(const geometry::TriangleMesh& mesh,
   auto skip = [&](const std::string& line) {
     if (skipped) skipped->push_back(line);
   };
+  if (const std::string e = config.Validate(); !e.empty()) {
+    skip("stair search not run: " + e);
+    return paths;
+  }
   // Upward faces of the stair objects, joined per object into flat pieces at one height.
   std::vector<Tread> faces;
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
