@@ -260,14 +260,15 @@ def test_bad_input_fails_cleanly(tmp_path, yaml_text, field):
     assert not out.exists() and not (tmp_path / "bad.bag.tmp").exists()
 
 
-KIT_EDC = os.path.join(ROOT, "..", "shared", "bim", "KIT-EDC_with_SB.ifc")
+# realpath: ROOT may be the build tree's symlink to the sources (.ws/src/is_graphs).
+KIT_EDC = os.path.realpath(os.path.join(ROOT, "..", "shared", "bim", "KIT-EDC_with_SB.ifc"))
 
 
 @pytest.mark.skipif(not os.path.exists(KIT_EDC), reason="no ../shared/bim/KIT-EDC_with_SB.ifc")
 def test_a_route_across_storeys_without_stairs_is_named(tmp_path):
     # KIT-EDC's IFC has three storeys and no IfcStair: rooms on two of them cannot be joined.
     scenario = tmp_path / "kit.yaml"
-    scenario.write_text(f"building: {os.path.abspath(KIT_EDC)}\nstorey: EG\n"
+    scenario.write_text(f"building: {KIT_EDC}\nstorey: EG\n"
                         "trajectory: {rooms: [\"45\", \"27 @ 1.OG\"]}\n")
     out = tmp_path / "kit.bag"
     r = make_bag(str(scenario), str(out), "--root", ROOT)
