@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <queue>
 
 #include "is_graphs/sim/room_geometry.h"
@@ -245,15 +246,13 @@ Result<Route> PlanRoute(const agraph::AGraph& g, int storey, const TrajectoryCon
     e = cost[st.upper_room][st.lower_room] = std::min(e, length);
   }
   // The stair footprints a walk inside a room on a storey keeps clear of.
-  auto obstacles_on = [&](int on) {
-    Polygons out;
-    for (const StairPath& st : stairs) {
-      if ((st.lower_storey == on || st.upper_storey == on) && st.footprint.size() >= 3) {
-        out.push_back(st.footprint);
-      }
-    }
-    return out;
-  };
+  std::map<int, Polygons> obstacles;  // by storey, gathered once
+  for (const StairPath& st : stairs) {
+    if (st.footprint.size() < 3) continue;
+    obstacles[st.lower_storey].push_back(st.footprint);
+    obstacles[st.upper_storey].push_back(st.footprint);
+  }
+  auto obstacles_on = [&](int on) -> const Polygons& { return obstacles[on]; };
   // Whether a room's interior point is clear of its storey's stairs (a stairwell's may lie on
   // a flight or over the opening: a room passed through is then crossed without it).
   auto centre_clear = [&](int room) {
