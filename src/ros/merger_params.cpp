@@ -27,6 +27,7 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "calibrate_odometry", c.calibrate_odometry);
   Read(pnh, "max_iterations", c.max_iterations);
   Read(pnh, "max_solver_time", c.max_solver_time);
+  Read(pnh, "function_tolerance", c.function_tolerance);
   Read(pnh, "num_threads", c.num_threads);
   Read(pnh, "gate_angle_deg", c.gate_angle_deg);
   Read(pnh, "gate_offset", c.gate_offset);

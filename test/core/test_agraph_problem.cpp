@@ -1,4 +1,6 @@
+#include <ceres/normal_prior.h>
 #include <ceres/problem.h>
+#include <ceres/solver.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -127,6 +129,75 @@ TEST(AGraphProblem, AddToALargerProblem) {
   EXPECT_EQ(problem.GetManifold(agraph.WallCentre(0)), nullptr);
   EXPECT_DOUBLE_EQ(agraph.WallCentre(4)[0], 4.0);
   EXPECT_DOUBLE_EQ(*agraph.SurfaceOffset(3), 8.2);
+}
+
+TEST(AGraphProblem, AddConnectedToTakesTheWallsAndRoomsTouched) {
+  const AGraph bim = TwoRooms();  // 10 surfaces, walls of two faces each, 2 rooms, 2 doorways
+  const Wall& wall = bim.walls[0];
+  {
+    AGraphProblem agraph(bim);
+    ceres::Problem problem;
+    agraph.AddConnectedTo(problem, {wall.surface_a, 99, -1}, {});  // out-of-range ids ignored
+    EXPECT_EQ(problem.NumParameterBlocks(), 5);  // both faces (normal, d) and the wall centre
+    EXPECT_EQ(problem.NumResidualBlocks(), 3);   // two plane priors, the wall's factor
+    EXPECT_TRUE(problem.HasParameterBlock(agraph.SurfaceNormal(wall.surface_b)));
+    EXPECT_NE(problem.GetManifold(agraph.SurfaceNormal(wall.surface_b)), nullptr);
+    EXPECT_FALSE(problem.HasParameterBlock(agraph.SurfaceNormal(bim.walls[1].surface_a)));
+    EXPECT_FALSE(problem.HasParameterBlock(agraph.RoomCentre(0)));
+  }
+  {
+    AGraphProblem agraph(bim);
+    ceres::Problem problem;
+    agraph.AddConnectedTo(problem, {}, {0});  // room 0, its door to room 1, that room
+    EXPECT_TRUE(problem.HasParameterBlock(agraph.RoomCentre(1)));
+    EXPECT_TRUE(problem.HasParameterBlock(agraph.DoorwayPosition(0)));
+    EXPECT_FALSE(problem.HasParameterBlock(agraph.SurfaceOffset(0)));
+  }
+  {
+    AGraphProblem agraph(bim);
+    ceres::Problem problem;
+    agraph.AddConnectedTo(problem, {}, {});
+    EXPECT_EQ(problem.NumParameterBlocks(), 0);
+  }
+}
+
+TEST(AGraphProblem, AddConnectedToSolvesLikeTheWholeGraph) {
+  // A pull on one face (as a match would): the wall it belongs to moves the same whether the
+  // rest of the A-Graph is in the problem or not.
+  const AGraph bim = TwoRooms();
+  const Wall& wall = bim.walls[0];
+  auto solve = [&](bool whole, AGraphProblem& agraph) {
+    ceres::Problem problem;
+    if (whole)
+      agraph.AddTo(problem);
+    else
+      agraph.AddConnectedTo(problem, {wall.surface_a}, {});
+    ceres::Matrix a(1, 1);
+    a(0, 0) = 1.0 / 0.01;
+    ceres::Vector b(1);
+    b(0) = *agraph.SurfaceOffset(wall.surface_a) + 0.05;
+    problem.AddResidualBlock(new ceres::NormalPrior(a, b), nullptr,
+                             agraph.SurfaceOffset(wall.surface_a));
+    ceres::Solver::Options options;
+    options.function_tolerance = 1e-14;
+    options.gradient_tolerance = 1e-14;
+    options.parameter_tolerance = 1e-14;
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    ASSERT_TRUE(summary.IsSolutionUsable()) << summary.BriefReport();
+  };
+  AGraphProblem whole(bim), part(bim);
+  solve(true, whole);
+  solve(false, part);
+  EXPECT_GT(std::abs(*part.SurfaceOffset(wall.surface_a) - bim.surfaces[wall.surface_a].plane.d),
+            0.01);  // it did move
+  for (int s : {wall.surface_a, wall.surface_b}) {
+    EXPECT_NEAR(*part.SurfaceOffset(s), *whole.SurfaceOffset(s), 1e-6) << s;
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(part.SurfaceNormal(s)[i], whole.SurfaceNormal(s)[i], 1e-6) << s;
+  }
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(part.WallCentre(wall.id)[i], whole.WallCentre(wall.id)[i], 1e-6);
 }
 
 TEST(AGraphProblem, WriteBackNeedsTheSameGraph) {

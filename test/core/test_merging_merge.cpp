@@ -541,6 +541,11 @@ TEST(MergerConfig, ValidateNamesTheField) {
   c = MergerConfig();
   c.max_iterations = 0;
   EXPECT_EQ(c.Validate().rfind("max_iterations", 0), 0u);
+  for (double bad : {0.0, -1e-5, 1.0, std::nan("")}) {
+    c = MergerConfig();
+    c.function_tolerance = bad;
+    EXPECT_EQ(c.Validate().rfind("function_tolerance", 0), 0u) << bad;
+  }
   c = MergerConfig();
   c.window_keyframes = -1;
   EXPECT_EQ(c.Validate().rfind("window_keyframes", 0), 0u) << c.Validate();

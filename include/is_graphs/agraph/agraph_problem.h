@@ -60,6 +60,15 @@ class AGraphProblem {
   /// outlive this object.
   void AddTo(ceres::Problem& problem);
 
+  /// As AddTo, but only the parts of the A-Graph's factor graph that hold one of these
+  /// wall-surfaces or rooms (ids; others ignored): a surface with its wall, the wall's other face
+  /// and their priors; a room with its doorways and, through them, the rooms they lead to. The
+  /// parts left out share no factor with those added, so the estimates of the parts added are
+  /// what AddTo would give them; the merger, whose matches touch a few walls and rooms of a
+  /// building, solves a problem the size of what it matched instead of the whole A-Graph.
+  void AddConnectedTo(ceres::Problem& problem, const std::vector<int>& surfaces,
+                      const std::vector<int>& rooms);
+
   /// Builds a problem of the A-Graph alone and solves it (SPARSE_NORMAL_CHOLESKY, SuiteSparse
   /// when ceres has it, else Eigen's sparse Cholesky).
   AGraphSolveSummary Solve();
@@ -78,6 +87,9 @@ class AGraphProblem {
   const AGraphProblemConfig& config() const { return config_; }
 
  private:
+  void AddParts(ceres::Problem& problem, const std::vector<bool>& surfaces,
+                const std::vector<bool>& rooms);
+
   AGraph measured_;
   AGraphProblemConfig config_;
   // Sized once in the constructor: the addresses of their elements never change.

@@ -6,6 +6,9 @@
 #include <ceres/sphere_manifold.h>
 
 #include <cmath>
+#include <functional>
+#include <memory>
+#include <numeric>
 #include <sstream>
 
 #include "is_graphs/agraph/cost/doorway_cost.h"
@@ -71,45 +74,92 @@ AGraphProblem::AGraphProblem(const AGraph& graph, const AGraphProblemConfig& con
 }
 
 void AGraphProblem::AddTo(ceres::Problem& problem) {
-  ceres::LossFunction* loss =
-      config_.huber_scale > 0.0 ? new ceres::HuberLoss(config_.huber_scale) : nullptr;
-  if (!normals_.empty()) {
-    ceres::Manifold* sphere = new ceres::SphereManifold<3>();
-    for (size_t i = 0; i < normals_.size(); ++i) {
-      problem.AddParameterBlock(normals_[i].data(), 3, sphere);
-      problem.AddParameterBlock(&offsets_[i], 1);
-    }
+  AddParts(problem, std::vector<bool>(normals_.size(), true),
+           std::vector<bool>(room_centres_.size(), true));
+}
+
+void AGraphProblem::AddConnectedTo(ceres::Problem& problem, const std::vector<int>& surfaces,
+                                   const std::vector<int>& rooms) {
+  // The factor graph's components: a wall joins its two faces, a doorway its rooms. Every other
+  // element has only its prior (a component of its own).
+  const int num_surfaces = static_cast<int>(normals_.size());
+  const int num_rooms = static_cast<int>(room_centres_.size());
+  std::vector<int> parent(num_surfaces + num_rooms);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> root = [&](int i) {
+    return parent[i] == i ? i : parent[i] = root(parent[i]);
+  };
+  auto join = [&](int a, int b) { parent[root(a)] = root(b); };
+  for (const Wall& w : measured_.walls) join(w.surface_a, w.surface_b);
+  for (const Doorway& d : measured_.doorways)
+    for (size_t i = 1; i < d.rooms.size(); ++i)
+      join(num_surfaces + d.rooms[0], num_surfaces + d.rooms[i]);
+  std::vector<bool> seed(parent.size(), false);
+  for (int s : surfaces)
+    if (s >= 0 && s < num_surfaces) seed[root(s)] = true;
+  for (int r : rooms)
+    if (r >= 0 && r < num_rooms) seed[root(num_surfaces + r)] = true;
+  std::vector<bool> keep_surface(num_surfaces), keep_room(num_rooms);
+  for (int i = 0; i < num_surfaces; ++i) keep_surface[i] = seed[root(i)];
+  for (int i = 0; i < num_rooms; ++i) keep_room[i] = seed[root(num_surfaces + i)];
+  AddParts(problem, keep_surface, keep_room);
+}
+
+void AGraphProblem::AddParts(ceres::Problem& problem, const std::vector<bool>& surfaces,
+                             const std::vector<bool>& rooms) {
+  std::unique_ptr<ceres::LossFunction> loss_owner(
+      config_.huber_scale > 0.0 ? new ceres::HuberLoss(config_.huber_scale) : nullptr);
+  ceres::LossFunction* loss = loss_owner.get();
+  bool loss_used = false;
+  std::unique_ptr<ceres::Manifold> sphere_owner(new ceres::SphereManifold<3>());
+  bool sphere_used = false;
+  for (size_t i = 0; i < normals_.size(); ++i) {
+    if (!surfaces[i]) continue;
+    problem.AddParameterBlock(normals_[i].data(), 3, sphere_owner.get());
+    problem.AddParameterBlock(&offsets_[i], 1);
+    sphere_used = true;
   }
 
   const Eigen::Matrix3d plane_info =
       SqrtInformation(config_.plane_angle_sigma, config_.plane_offset_sigma);
   for (const WallSurface& s : measured_.surfaces) {
+    if (!surfaces[s.id]) continue;
     problem.AddResidualBlock(PlanePriorCost::Create(s.plane, plane_info), loss,
                              normals_[s.id].data(), &offsets_[s.id]);
+    loss_used = true;
   }
 
   const Eigen::Matrix3d wall_info = Eigen::Matrix3d::Identity() / config_.wall_centre_sigma;
   for (const Wall& w : measured_.walls) {
+    if (!surfaces[w.surface_a]) continue;  // then not its other face either (AddConnectedTo)
     problem.AddResidualBlock(WallCentreCost::Create(w.start, wall_info), loss,
                              wall_centres_[w.id].data(), normals_[w.surface_a].data(),
                              &offsets_[w.surface_a], normals_[w.surface_b].data(),
                              &offsets_[w.surface_b]);
+    loss_used = true;
   }
 
   const Eigen::Matrix3d room_info = Eigen::Matrix3d::Identity() / config_.room_centre_sigma;
   for (const Room& r : measured_.rooms) {
+    if (!rooms[r.id]) continue;
     problem.AddResidualBlock(PointPriorCost::Create(r.center, room_info), loss,
                              room_centres_[r.id].data());
+    loss_used = true;
   }
 
   const Eigen::Matrix3d doorway_info = Eigen::Matrix3d::Identity() / config_.doorway_sigma;
   for (const Doorway& d : measured_.doorways) {
     for (int room : d.rooms) {
+      if (!rooms[room]) continue;
       const Eigen::Vector3d offset = measured_.rooms[room].center - d.position;
       problem.AddResidualBlock(DoorwayRoomCost::Create(offset, doorway_info), loss,
                                doorway_positions_[d.id].data(), room_centres_[room].data());
+      loss_used = true;
     }
   }
+  // The problem owns (the default ceres::Problem::Options) what it was handed.
+  if (loss_used) loss_owner.release();
+  if (sphere_used) sphere_owner.release();
 }
 
 AGraphSolveSummary AGraphProblem::Solve() {

@@ -106,7 +106,15 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
   out.z = z;
   ceres::Problem problem;  // owns costs, losses and manifolds
   agraph::AGraphProblem a_problem(a_graph, config.agraph);
-  a_problem.AddTo(problem);
+  {
+    // Only the parts of the A-Graph the matches touch: the rest shares no factor with them (on
+    // a building of several storeys, most of it; issue 22's hour-long merge latency).
+    std::vector<int> matched_surfaces, matched_rooms;
+    for (const auto& [s_id, a_ids] : pairs.surfaces)
+      matched_surfaces.insert(matched_surfaces.end(), a_ids.begin(), a_ids.end());
+    for (const auto& [s_id, a_id] : pairs.rooms) matched_rooms.push_back(a_id);
+    a_problem.AddConnectedTo(problem, matched_surfaces, matched_rooms);
+  }
   const sgraph::BackendProblem s_problem = WindowedSGraph(s_graph, config);
   sgraph::SGraphFactors s(s_problem);
   if (config.optimize_sgraph) {
@@ -227,7 +235,7 @@ MergeSolution SolveMerge(const agraph::AGraph& a_graph, const sgraph::SGraph& s_
   options.max_solver_time_in_seconds = config.max_solver_time;
   options.num_threads = config.num_threads;
   options.logging_type = ceres::SILENT;
-  options.function_tolerance = 1e-10;
+  options.function_tolerance = config.function_tolerance;
   options.gradient_tolerance = 1e-12;
   options.parameter_tolerance = 1e-10;
   ceres::Solver::Summary summary;

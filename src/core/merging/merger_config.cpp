@@ -54,6 +54,8 @@ std::string MergerConfig::Validate() const {
            std::to_string(min_surface_inliers_without_rooms);
   if (max_iterations < 1)
     return "max_iterations must be >= 1, got " + std::to_string(max_iterations);
+  if (!(function_tolerance > 0.0 && function_tolerance < 1.0))
+    return "function_tolerance must be in (0, 1), got " + std::to_string(function_tolerance);
   if (window_keyframes < 0)
     return "window_keyframes must be >= 0 (0: all keyframes), got " +
            std::to_string(window_keyframes);
