@@ -6,15 +6,14 @@
 #include <ceres/sphere_manifold.h>
 
 #include <cmath>
-#include <functional>
 #include <memory>
-#include <numeric>
 #include <sstream>
 
 #include "is_graphs/agraph/cost/doorway_cost.h"
 #include "is_graphs/agraph/cost/plane_prior_cost.h"
 #include "is_graphs/agraph/cost/point_prior_cost.h"
 #include "is_graphs/agraph/cost/wall_centre_cost.h"
+#include "is_graphs/common/disjoint_sets.h"
 
 namespace is_graphs {
 namespace agraph {
@@ -84,24 +83,19 @@ void AGraphProblem::AddConnectedTo(ceres::Problem& problem, const std::vector<in
   // element has only its prior (a component of its own).
   const int num_surfaces = static_cast<int>(normals_.size());
   const int num_rooms = static_cast<int>(room_centres_.size());
-  std::vector<int> parent(num_surfaces + num_rooms);
-  std::iota(parent.begin(), parent.end(), 0);
-  std::function<int(int)> root = [&](int i) {
-    return parent[i] == i ? i : parent[i] = root(parent[i]);
-  };
-  auto join = [&](int a, int b) { parent[root(a)] = root(b); };
-  for (const Wall& w : measured_.walls) join(w.surface_a, w.surface_b);
+  DisjointSets pieces(num_surfaces + num_rooms);  // surfaces, then rooms
+  for (const Wall& w : measured_.walls) pieces.Join(w.surface_a, w.surface_b);
   for (const Doorway& d : measured_.doorways)
     for (size_t i = 1; i < d.rooms.size(); ++i)
-      join(num_surfaces + d.rooms[0], num_surfaces + d.rooms[i]);
-  std::vector<bool> seed(parent.size(), false);
+      pieces.Join(num_surfaces + d.rooms[0], num_surfaces + d.rooms[i]);
+  std::vector<bool> seed(num_surfaces + num_rooms, false);
   for (int s : surfaces)
-    if (s >= 0 && s < num_surfaces) seed[root(s)] = true;
+    if (s >= 0 && s < num_surfaces) seed[pieces.Find(s)] = true;
   for (int r : rooms)
-    if (r >= 0 && r < num_rooms) seed[root(num_surfaces + r)] = true;
+    if (r >= 0 && r < num_rooms) seed[pieces.Find(num_surfaces + r)] = true;
   std::vector<bool> keep_surface(num_surfaces), keep_room(num_rooms);
-  for (int i = 0; i < num_surfaces; ++i) keep_surface[i] = seed[root(i)];
-  for (int i = 0; i < num_rooms; ++i) keep_room[i] = seed[root(num_surfaces + i)];
+  for (int i = 0; i < num_surfaces; ++i) keep_surface[i] = seed[pieces.Find(i)];
+  for (int i = 0; i < num_rooms; ++i) keep_room[i] = seed[pieces.Find(num_surfaces + i)];
   AddParts(problem, keep_surface, keep_room);
 }
 

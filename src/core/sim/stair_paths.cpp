@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <set>
 #include <sstream>
 
+#include "is_graphs/common/disjoint_sets.h"
 #include "is_graphs/sim/room_geometry.h"
 
 namespace is_graphs {
@@ -23,11 +23,6 @@ struct Tread {
   std::vector<int> objects;              // mesh object indices
 };
 
-int Find(std::vector<int>* parent, int i) {
-  while ((*parent)[i] != i) i = (*parent)[i] = (*parent)[(*parent)[i]];
-  return i;
-}
-
 double BoxGap(const Tread& a, const Tread& b) {
   const Eigen::Vector2d gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
   return gap.norm();
@@ -37,15 +32,14 @@ double BoxGap(const Tread& a, const Tread& b) {
 // returned as the list of its members.
 template <typename Touch>
 std::vector<std::vector<int>> Components(int n, const Touch& touch) {
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
+  DisjointSets sets_of(n);
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
-      if (touch(i, j)) parent[Find(&parent, i)] = Find(&parent, j);
+      if (touch(i, j)) sets_of.Join(i, j);
     }
   }
   std::vector<std::vector<int>> sets(n);
-  for (int i = 0; i < n; ++i) sets[Find(&parent, i)].push_back(i);
+  for (int i = 0; i < n; ++i) sets[sets_of.Find(i)].push_back(i);
   sets.erase(std::remove_if(sets.begin(), sets.end(), [](const auto& s) { return s.empty(); }),
              sets.end());
   return sets;
