@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo report test screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching bench-long evaluate clean format
+.PHONY: all setup build demo report test platforms screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching bench-long evaluate clean format
 
 all: build
 
@@ -25,6 +25,12 @@ report: build
 
 test: build
 	@bash scripts/test.sh
+
+# The README's commands on Debian 11 (also with g++-9), 12 and 13, in debootstrap roots kept in
+# ~/.cache/is_graphs/platforms: setup, build, the core gtests, D5_short made and localized; one
+# table (docs/platforms.md). Needs root; 15-25 min per platform the first time. PLATFORMS="debian13".
+platforms:
+	@bash scripts/platforms.sh $(PLATFORMS)
 
 # The README's pictures: rviz under Xvfb on the demo's bag -> docs/images/isgraph.png, and the
 # trajectory plot -> docs/images/trajectory.png. SCENARIO=, RATE=1, SHOT_AT=130 (bag seconds).

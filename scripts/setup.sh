@@ -5,6 +5,17 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 
+# The platforms setup knows (docs/platforms.md): Debian 11, 12 and 13 ship ROS 1 and every
+# package of scripts/apt-packages.txt under the same names. Elsewhere (Ubuntu with ROS Noetic or
+# ROS-O) the names differ: use rosdep (README, "In your own workspace").
+. /etc/os-release 2>/dev/null || true
+case "${ID:-}:${VERSION_ID:-}" in
+  debian:11 | debian:12 | debian:13) ;;
+  *) echo "setup: warning: ${PRETTY_NAME:-this system} is not Debian 11, 12 or 13, the platforms" \
+       "scripts/apt-packages.txt is written for; on Ubuntu with ROS 1 use" \
+       "'rosdep install --from-paths src --ignore-src -y' instead" >&2 ;;
+esac
+
 mapfile -t packages < <(grep -v '^\s*#' scripts/apt-packages.txt | sed '/^\s*$/d')
 missing=()
 for p in "${packages[@]}"; do
@@ -20,6 +31,16 @@ if ((${#missing[@]})); then
     SUDO=sudo
   fi
   $SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  unknown=()
+  for p in "${missing[@]}"; do
+    candidate=$(apt-cache policy "$p" 2>/dev/null | sed -n 's/^ *Candidate: *//p')
+    [ -n "${candidate}" ] && [ "${candidate}" != "(none)" ] || unknown+=("$p")
+  done
+  if ((${#unknown[@]})); then
+    echo "setup: error: ${PRETTY_NAME:-this system}'s package lists have no ${unknown[*]}" \
+      "(scripts/apt-packages.txt; supported: Debian 11, 12, 13)" >&2
+    exit 1
+  fi
   $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 

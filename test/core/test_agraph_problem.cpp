@@ -7,6 +7,7 @@
 
 #include "fixtures.h"
 #include "is_graphs/agraph/agraph_io.h"
+#include "is_graphs/common/ceres_compat.h"
 #include "is_graphs/agraph/agraph_problem.h"
 
 namespace is_graphs {
@@ -124,9 +125,9 @@ TEST(AGraphProblem, AddToALargerProblem) {
   EXPECT_EQ(problem.NumResidualBlocks(), 20);
   EXPECT_EQ(problem.NumResiduals(), 60);
   ASSERT_TRUE(problem.HasParameterBlock(agraph.SurfaceNormal(3)));
-  EXPECT_NE(problem.GetManifold(agraph.SurfaceNormal(3)), nullptr);
-  EXPECT_EQ(problem.ParameterBlockTangentSize(agraph.SurfaceNormal(3)), 2);
-  EXPECT_EQ(problem.GetManifold(agraph.WallCentre(0)), nullptr);
+  EXPECT_NE(ceres_compat::GetParameterization(problem, agraph.SurfaceNormal(3)), nullptr);
+  EXPECT_EQ(ceres_compat::TangentSize(problem, agraph.SurfaceNormal(3)), 2);
+  EXPECT_EQ(ceres_compat::GetParameterization(problem, agraph.WallCentre(0)), nullptr);
   EXPECT_DOUBLE_EQ(agraph.WallCentre(4)[0], 4.0);
   EXPECT_DOUBLE_EQ(*agraph.SurfaceOffset(3), 8.2);
 }
@@ -141,7 +142,7 @@ TEST(AGraphProblem, AddConnectedToTakesTheWallsAndRoomsTouched) {
     EXPECT_EQ(problem.NumParameterBlocks(), 5);  // both faces (normal, d) and the wall centre
     EXPECT_EQ(problem.NumResidualBlocks(), 3);   // two plane priors, the wall's factor
     EXPECT_TRUE(problem.HasParameterBlock(agraph.SurfaceNormal(wall.surface_b)));
-    EXPECT_NE(problem.GetManifold(agraph.SurfaceNormal(wall.surface_b)), nullptr);
+    EXPECT_NE(ceres_compat::GetParameterization(problem, agraph.SurfaceNormal(wall.surface_b)), nullptr);
     EXPECT_FALSE(problem.HasParameterBlock(agraph.SurfaceNormal(bim.walls[1].surface_a)));
     EXPECT_FALSE(problem.HasParameterBlock(agraph.RoomCentre(0)));
   }

@@ -22,8 +22,8 @@ struct RayHit {
   int triangle;            // -1 when nothing was hit
 };
 
-/// RAII owner of an Embree 3 device and a committed static triangle scene; casts batches of
-/// rays with rtcIntersect1M. The BVH is built single-threaded with high quality so that the
+/// RAII owner of an Embree (3 or 4) device and a committed static triangle scene; casts batches of
+/// rays (rtcIntersect1M on Embree 3, rtcIntersect1 on 4). The BVH is built single-threaded with high quality so that the
 /// same triangles always give the same hits. Intersect is const and thread-compatible.
 class EmbreeScene {
  public:

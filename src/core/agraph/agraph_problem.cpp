@@ -1,9 +1,7 @@
 #include "is_graphs/agraph/agraph_problem.h"
 
 #include <ceres/loss_function.h>
-#include <ceres/manifold.h>
 #include <ceres/solver.h>
-#include <ceres/sphere_manifold.h>
 
 #include <cmath>
 #include <memory>
@@ -13,6 +11,7 @@
 #include "is_graphs/agraph/cost/plane_prior_cost.h"
 #include "is_graphs/agraph/cost/point_prior_cost.h"
 #include "is_graphs/agraph/cost/wall_centre_cost.h"
+#include "is_graphs/common/ceres_compat.h"
 #include "is_graphs/common/disjoint_sets.h"
 
 namespace is_graphs {
@@ -105,7 +104,7 @@ void AGraphProblem::AddParts(ceres::Problem& problem, const std::vector<bool>& s
       config_.huber_scale > 0.0 ? new ceres::HuberLoss(config_.huber_scale) : nullptr);
   ceres::LossFunction* loss = loss_owner.get();
   bool loss_used = false;
-  std::unique_ptr<ceres::Manifold> sphere_owner(new ceres::SphereManifold<3>());
+  std::unique_ptr<ceres_compat::Parameterization> sphere_owner(ceres_compat::NewUnitSphere3());
   bool sphere_used = false;
   for (size_t i = 0; i < normals_.size(); ++i) {
     if (!surfaces[i]) continue;

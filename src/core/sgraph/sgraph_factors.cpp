@@ -1,13 +1,12 @@
 #include "is_graphs/sgraph/sgraph_factors.h"
 
 #include <ceres/loss_function.h>
-#include <ceres/manifold.h>
-#include <ceres/sphere_manifold.h>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <limits>
 
+#include "is_graphs/common/ceres_compat.h"
 #include "is_graphs/sgraph/cost/corridor_plane_cost.h"
 #include "is_graphs/sgraph/cost/floor_room_cost.h"
 #include "is_graphs/sgraph/cost/keyframe_plane_cost.h"
@@ -43,7 +42,7 @@ SGraphFactors::SGraphFactors(const BackendProblem& problem) {
 
 void SGraphFactors::AddTo(const BackendProblem& problem, const BackendConfig& config,
                           ceres::Problem& ceres_problem) {
-  auto* quaternion = new ceres::EigenQuaternionManifold;  // owned by ceres_problem
+  auto* quaternion = ceres_compat::NewEigenQuaternion();  // owned by ceres_problem
   for (const auto& k : problem.keyframes) {
     PoseBlock& b = poses.at(k.id);
     ceres_problem.AddParameterBlock(b.t.data(), 3);
@@ -92,9 +91,9 @@ void SGraphFactors::AddTo(const BackendProblem& problem, const BackendConfig& co
                                    &pl->second.d);
     pl->second.observed = true;
   }
-  auto* sphere = new ceres::SphereManifold<3>;  // owned by ceres_problem
+  auto* sphere = ceres_compat::NewUnitSphere3();  // owned by ceres_problem
   for (auto& [id, block] : planes)
-    if (block.observed) ceres_problem.SetManifold(block.n.data(), sphere);
+    if (block.observed) ceres_compat::SetParameterization(ceres_problem, block.n.data(), sphere);
 
   // Planes held in a windowed problem: a moved room's planes that the window does not see.
   for (int id : problem.constant_planes) {

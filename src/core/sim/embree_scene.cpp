@@ -1,6 +1,13 @@
 #include "is_graphs/sim/embree_scene.h"
 
+// Embree 3 (Debian 11/12, Ubuntu) or 4 (Debian 13): CMake defines IS_GRAPHS_EMBREE_MAJOR from
+// the version it found. The two give the same hits: same watertight triangle test, same scene
+// flags; Embree 4 dropped the stream API (rtcIntersect1M), so there the batch is cast ray by ray.
+#if IS_GRAPHS_EMBREE_MAJOR == 4
+#include <embree4/rtcore.h>
+#else
 #include <embree3/rtcore.h>
+#endif
 
 #include <cstring>
 #include <limits>
@@ -69,9 +76,15 @@ void EmbreeScene::Intersect(const std::vector<Ray>& rays, std::vector<RayHit>* h
   constexpr std::size_t kBatch = 1024;
   hits->resize(rays.size());
   std::vector<RTCRayHit> batch(std::min(kBatch, rays.size()));
+#if IS_GRAPHS_EMBREE_MAJOR == 4
+  RTCIntersectArguments arguments;
+  rtcInitIntersectArguments(&arguments);
+  arguments.flags = RTC_RAY_QUERY_FLAG_COHERENT;
+#else
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+#endif
   for (std::size_t begin = 0; begin < rays.size(); begin += kBatch) {
     const std::size_t n = std::min(kBatch, rays.size() - begin);
     for (std::size_t i = 0; i < n; ++i) {
@@ -93,8 +106,12 @@ void EmbreeScene::Intersect(const std::vector<Ray>& rays, std::vector<RayHit>* h
       rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
       rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     }
+#if IS_GRAPHS_EMBREE_MAJOR == 4
+    for (std::size_t i = 0; i < n; ++i) rtcIntersect1(impl_->scene, &batch[i], &arguments);
+#else
     rtcIntersect1M(impl_->scene, &context, batch.data(), static_cast<unsigned>(n),
                    sizeof(RTCRayHit));
+#endif
     for (std::size_t i = 0; i < n; ++i) {
       RayHit& out = (*hits)[begin + i];
       if (batch[i].hit.geomID == RTC_INVALID_GEOMETRY_ID) {
