@@ -92,7 +92,9 @@ TEST(OdometryCost, JacobiansMatchNumericDifferentiation) {
   Eigen::Isometry3d z = Eigen::Isometry3d::Identity();
   z.linear() = Yaw(0.2).toRotationMatrix();
   z.translation() = Vector3d(0.8, -0.1, 0.01);
-  const Matrix6d s = Eigen::Matrix<double, 6, 1>(10, 20, 30, 40, 50, 60).asDiagonal();
+  Eigen::Matrix<double, 6, 1> diagonal;
+  diagonal << 10, 20, 30, 40, 50, 60;  // (Eigen 3.3 has no six-argument constructor)
+  const Matrix6d s = diagonal.asDiagonal();
   std::unique_ptr<ceres::CostFunction> autodiff(OdometryCost::Create(z, s));
   ceres::NumericDiffCostFunction<OdometryCost, ceres::CENTRAL, 6, 3, 4, 3, 4, 1> numeric(
       new OdometryCost(z, s));
