@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what the project needs, idempotently and quickly when all is there:
-#   Debian packages (scripts/apt-packages.txt) and a venv (.venv) with scripts/requirements.txt.
+#   Debian packages (scripts/apt-packages.txt) and a venv (.venv) with scripts/requirements.in.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
@@ -54,11 +54,37 @@ if ! getent hosts localhost >/dev/null 2>&1; then
   fi
 fi
 
+# The venv: scripts/requirements.in, pinned by scripts/constraints/py3.X.txt for the Python of
+# /usr/bin/python3 (3.9 to 3.13). On 3.8 (Ubuntu 20.04, Noetic) IfcOpenShell has no build: the
+# venv gets the rest (requirements.in's markers) and IFC files are converted on another machine.
+pyver=$(/usr/bin/python3 -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+constraints=scripts/constraints/py${pyver}.txt
+case "$pyver" in
+  3.9 | 3.10 | 3.11 | 3.12 | 3.13) ;;
+  3.8)
+    echo "setup: warning: /usr/bin/python3 is Python 3.8; supported: 3.9 to 3.13. IfcOpenShell" \
+      "has no build for 3.8, so IFC conversion is unavailable here: convert on a machine with" \
+      "Python 3.9-3.13 (scripts/ifc_to_agraph.py BUILDING.ifc -o OUT/BUILDING) and copy" \
+      "OUT/BUILDING.agraph.json and OUT/BUILDING.obj here (bim:=.../BUILDING.agraph.json)." \
+      "The venv gets the rest (evo, matplotlib, xmlschema). See docs/platforms.md." >&2
+    ;;
+  *)
+    echo "setup: error: /usr/bin/python3 is Python $pyver; the project's Python packages support" \
+      "Python 3.9 to 3.13 (3.8 without IFC conversion). See docs/platforms.md." >&2
+    exit 1
+    ;;
+esac
 stamp=.venv/.requirements.sha256
-want=$(sha256sum scripts/requirements.txt | cut -d' ' -f1)
+want=$({ echo "python $pyver"; cat scripts/requirements.in "$constraints"; } | sha256sum | cut -d' ' -f1)
 if [ ! -x .venv/bin/python3 ] || [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
-  echo "setup: creating the Python venv .venv (system site packages + scripts/requirements.txt)"
-  /usr/bin/python3 -m venv --system-site-packages .venv
-  .venv/bin/python3 -m pip install -q --disable-pip-version-check -r scripts/requirements.txt
+  # A venv of another Python (the system's was upgraded) is made anew, not installed over.
+  clear=()
+  venv_ver=$(sed -n 's/^version *= *\([0-9]*\.[0-9]*\).*/\1/p' .venv/pyvenv.cfg 2>/dev/null || true)
+  if [ -n "$venv_ver" ] && [ "$venv_ver" != "$pyver" ]; then clear=(--clear); fi
+  echo "setup: creating the Python venv .venv (Python $pyver: system site packages +" \
+    "scripts/requirements.in, pinned by $constraints)"
+  /usr/bin/python3 -m venv --system-site-packages "${clear[@]}" .venv
+  .venv/bin/python3 -m pip install -q --disable-pip-version-check --only-binary=:all: \
+    -r scripts/requirements.in -c "$constraints"
   echo "$want" > "$stamp"
 fi

@@ -15,11 +15,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Tuple
 
 EPS = 1e-7          # length tolerance, metres
 MIN_JOINT_DEG = 15.0  # smallest angle allowed between two walls meeting at a node
 
-Point = tuple[float, float]
+Point = Tuple[float, float]  # typing.Tuple: evaluated at import, tuple[...] needs Python 3.9
 
 
 def sub(a: Point, b: Point) -> Point:

@@ -101,10 +101,62 @@ def _plan_polygon(poly2d):
     return p if p.is_valid else shapely.make_valid(p)
 
 
+def _ear_clip(ring):
+    """Triangles [(a, b, c)] of a simple counter-clockwise ring [(x, y)] (not closed)."""
+    pts, out = list(ring), []
+
+    def cross(a, b, c):
+        return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    while len(pts) > 3:
+        n = len(pts)
+        for i in range(n):
+            a, b, c = pts[i - 1], pts[i], pts[(i + 1) % n]
+            turn = cross(a, b, c)
+            if abs(turn) <= 1e-12:      # b on the line a-c: drop it, no triangle
+                break
+            if turn < 0 or any(cross(a, b, p) >= 0 and cross(b, c, p) >= 0 and
+                               cross(c, a, p) >= 0 for p in pts if p not in (a, b, c)):
+                continue                # reflex, or another vertex in the triangle: no ear
+            out.append((a, b, c))
+            break
+        else:
+            return out                  # no ear left (numerically degenerate): what was found
+        del pts[i]
+    if len(pts) == 3 and abs(cross(*pts)) > 1e-12:
+        out.append(tuple(pts))
+    return out
+
+
+def _constrained_triangles(plan):
+    """Triangles (a geometry with .geoms) exactly covering `plan`: shapely's constrained Delaunay
+    triangulation (shapely 2.1, Python 3.10 and newer), else (shapely 2.0, Python 3.9) ear
+    clipping, holes first cut open by splitting the polygon across each of them."""
+    if hasattr(shapely, "constrained_delaunay_triangles"):
+        return shapely.constrained_delaunay_triangles(plan)
+    from shapely.geometry import GeometryCollection, LineString
+    from shapely.geometry.polygon import orient
+    from shapely.ops import split
+    todo, tris = [plan], []
+    while todo:
+        g = todo.pop()
+        if hasattr(g, "geoms"):
+            todo.extend(g.geoms)
+        elif isinstance(g, Polygon) and g.area > 0:
+            if g.interiors:
+                x0, _, x1, _ = g.interiors[0].bounds
+                _, y0, _, y1 = g.bounds
+                todo.extend(split(g, LineString([(0.5 * (x0 + x1), y0 - 1.0),
+                                                 (0.5 * (x0 + x1), y1 + 1.0)])).geoms)
+            else:
+                ring = list(orient(g, 1.0).exterior.coords)[:-1]
+                tris += [Polygon(t) for t in _ear_clip(ring)]
+    return GeometryCollection(tris)
+
+
 def triangulate_footprint(poly2d, z, space_id):
     """The footprint (K, 2) as an upward-facing triangle mesh at height z (a Shape), or None."""
     plan = _plan_polygon(poly2d)
-    tris = shapely.constrained_delaunay_triangles(plan) if plan.area > 0 else None
+    tris = _constrained_triangles(plan) if plan.area > 0 else None
     keys, verts, faces = {}, [], []
 
     def vid(x, y):

@@ -8,6 +8,7 @@ warning per storey names the storey and the count, and the report says it
 """
 import json
 import os
+import sys
 from collections import defaultdict
 
 import numpy as np
@@ -204,3 +205,33 @@ def test_space_far_below_its_storey_gets_its_floor_at_the_storey_elevation(make_
             and "unusable" in w and "z = 0.000 m" in w]
     assert len(hits) == 1, g["warnings"]
     assert any("under 3 of its 3 space(s)" in w for w in g["warnings"]), g["warnings"]
+
+
+@pytest.mark.parametrize("ring, holes", [
+    ([(0, 0), (4, 0), (4, 3), (0, 3)], []),                                      # a rectangle
+    ([(0.2, 0.2), (3.9, 0.2), (3.9, 3.8), (0.6, 3.8), (0.6, 3.4), (0.2, 3.4)], []),  # a notch
+    ([(0, 0), (6, 0), (6, 1), (1, 1), (1, 4), (6, 4), (6, 5), (0, 5)], []),      # a C
+    ([(0, 0), (2, 0), (4, 0), (4, 4), (0, 4), (0, 2)], []),                      # collinear points
+    ([(0, 0), (8, 0), (8, 6), (0, 6)], [[(2, 2), (3, 2), (3, 3), (2, 3)],        # two holes
+                                        [(5, 1), (7, 1), (6, 4)]]),
+])
+def test_footprints_triangulate_without_shapely_2_1(monkeypatch, ring, holes):
+    """Python 3.9 has shapely 2.0, without constrained_delaunay_triangles: the floors then come
+    from ear clipping (holes cut open first), which must cover the footprint exactly."""
+    sys.path.insert(0, os.path.join(REPO, "scripts"))
+    import shapely
+    from shapely.geometry import Polygon
+    from is_graphs_bim import floors
+    monkeypatch.delattr(shapely, "constrained_delaunay_triangles", raising=False)
+    plan = Polygon(ring, holes)
+    tris = list(floors._constrained_triangles(plan).geoms)
+    assert all(len(t.exterior.coords) == 4 for t in tris)
+    assert sum(t.area for t in tris) == pytest.approx(plan.area, rel=1e-9)
+    assert shapely.union_all(tris).symmetric_difference(plan).area == pytest.approx(0, abs=1e-9)
+    shape = floors.triangulate_footprint(np.array(ring, dtype=float), 1.5, 7) if not holes \
+        else None
+    if shape is not None:
+        a, b, c = (shape.verts[shape.faces[:, k]] for k in range(3))
+        up = np.cross(b - a, c - a)[:, 2]
+        assert np.all(up > 0) and up.sum() / 2 == pytest.approx(plan.area, rel=1e-9)
+        assert np.allclose(shape.verts[:, 2], 1.5)

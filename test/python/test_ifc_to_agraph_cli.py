@@ -36,7 +36,7 @@ def test_units_geometry_stays_in_metres(make_house, run_converter, tmp_path, uni
     part = [w for w in g["walls"] if w["ifc_id"] == ids["W_part"]][0]
     planes = sorted((g["wall_surfaces"][s]["normal"][0], g["wall_surfaces"][s]["d"])
                     for s in part["surfaces"])
-    assert planes == pytest.approx([(-1.0, -3.9), (1.0, 4.1)], abs=1e-6)
+    assert [x for plane in planes for x in plane] == pytest.approx([-1.0, -3.9, 1.0, 4.1], abs=1e-6)
     assert part["length"] == pytest.approx(4.0) and part["height"] == pytest.approx(2.6)
     doors = {d["name"]: d for d in g["doorways"]}
     assert doors["D_AB"]["width"] == pytest.approx(0.9) and doors["D_AB"]["rooms"] == [0, 1]
