@@ -7,8 +7,8 @@
 
 #include "fixtures.h"
 #include "is_graphs/agraph/agraph_io.h"
-#include "is_graphs/common/ceres_compat.h"
 #include "is_graphs/agraph/agraph_problem.h"
+#include "is_graphs/common/ceres_compat.h"
 
 namespace is_graphs {
 namespace agraph {
@@ -142,7 +142,8 @@ TEST(AGraphProblem, AddConnectedToTakesTheWallsAndRoomsTouched) {
     EXPECT_EQ(problem.NumParameterBlocks(), 5);  // both faces (normal, d) and the wall centre
     EXPECT_EQ(problem.NumResidualBlocks(), 3);   // two plane priors, the wall's factor
     EXPECT_TRUE(problem.HasParameterBlock(agraph.SurfaceNormal(wall.surface_b)));
-    EXPECT_NE(ceres_compat::GetParameterization(problem, agraph.SurfaceNormal(wall.surface_b)), nullptr);
+    EXPECT_NE(ceres_compat::GetParameterization(problem, agraph.SurfaceNormal(wall.surface_b)),
+              nullptr);
     EXPECT_FALSE(problem.HasParameterBlock(agraph.SurfaceNormal(bim.walls[1].surface_a)));
     EXPECT_FALSE(problem.HasParameterBlock(agraph.RoomCentre(0)));
   }

@@ -65,8 +65,8 @@ TEST(CeresCompat, EigenQuaternionPlusIsALeftRotation) {
   const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
   const Eigen::Vector3d delta(0.01, -0.02, 0.03);
   Eigen::Quaterniond out;
-  ASSERT_TRUE(ceres_compat::Plus(*quaternion, q.coeffs().data(), delta.data(),
-                                 out.coeffs().data()));
+  ASSERT_TRUE(
+      ceres_compat::Plus(*quaternion, q.coeffs().data(), delta.data(), out.coeffs().data()));
   // Known value: exp(δ) ⊗ q with exp(δ) the rotation by |δ| about δ/|δ|.
   const Eigen::Quaterniond expected =
       Eigen::Quaterniond(Eigen::AngleAxisd(delta.norm(), delta.normalized())) * q;

@@ -161,6 +161,22 @@ TEST(IfcConversion, LoadBimByExtension) {
   EXPECT_EQ(graph.value().rooms.size(), 2u);
 }
 
+// A robot without IfcOpenShell (Ubuntu 20.04's Python 3.8 has no wheel): an .agraph.json
+// converted on another machine loads with no Python at all.
+TEST(IfcConversion, AGraphFileNeedsNoPython) {
+  IfcConversionConfig config;
+  config.python = "/nonexistent/python3";
+  config.converter = "/nonexistent/ifc_to_agraph.py";
+  const Result<AGraph> graph = LoadBim(testing::TwoRoomsPath(), config);
+  ASSERT_TRUE(graph.ok()) << graph.error();
+  EXPECT_EQ(graph.value().rooms.size(), 2u);
+  // ... while an IFC with the same configuration says which interpreter is missing.
+  const std::string office = std::string(IS_GRAPHS_SOURCE_DIR) + "/bim/office.ifc";
+  const Result<AGraph> ifc = LoadBim(office, config);
+  ASSERT_FALSE(ifc.ok());
+  EXPECT_TRUE(Contains(ifc.error(), "/nonexistent/python3")) << ifc.error();
+}
+
 TEST(IfcConversion, ConfigValidate) {
   EXPECT_EQ(IfcConversionConfig().Validate(), "");
   IfcConversionConfig config;

@@ -61,7 +61,9 @@ inline int TangentSize(const Parameterization& p) { return p.TangentSize(); }
 #else
 using Parameterization = ceres::LocalParameterization;
 
-inline Parameterization* NewUnitSphere3() { return new ceres::HomogeneousVectorParameterization(3); }
+inline Parameterization* NewUnitSphere3() {
+  return new ceres::HomogeneousVectorParameterization(3);
+}
 inline Parameterization* NewEigenQuaternion() {
   return new ceres::EigenQuaternionParameterization();
 }
