@@ -5,11 +5,26 @@
 #include <Eigen/Core>
 
 #include "is_graphs/agraph/agraph.h"
+#include "is_graphs/sim/scan_simulator.h"
 #include "is_graphs/sim/scene.h"
 
 namespace is_graphs {
 namespace sim {
 namespace testing {
+
+/// Field by field: LidarPoint has padding after `ring`, whose bytes are indeterminate, so a
+/// memcmp of whole points can differ on identical points (it did with gcc 14).
+inline bool SamePoint(const LidarPoint& p, const LidarPoint& q) {
+  return p.x == q.x && p.y == q.y && p.z == q.z && p.intensity == q.intensity && p.ring == q.ring &&
+         p.time == q.time && p.column == q.column;
+}
+
+inline bool SameScan(const LidarScan& a, const LidarScan& b) {
+  if (a.stamp != b.stamp || a.points.size() != b.points.size()) return false;
+  for (std::size_t i = 0; i < a.points.size(); ++i)
+    if (!SamePoint(a.points[i], b.points[i])) return false;
+  return true;
+}
 
 /// A closed box room [0, sx] x [0, sy] x [0, sz]: floor, ceiling and four walls (0.2 m thick,
 /// outside the interval), as a scene. Its inner surfaces are the planes x=0, x=sx, y=0, y=sy,

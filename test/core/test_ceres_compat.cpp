@@ -29,32 +29,34 @@ TEST(CeresCompat, UnitSpherePlusOfZeroIsTheSamePoint) {
   EXPECT_NEAR((y - x).norm(), 0.0, 1e-15);
 }
 
-// Known value: at the pole (0, 0, 1) the Householder reflection is the identity up to the sign
-// of the last coordinate, so x ⊞ δ = (sin(|δ|/2) δ/|δ|, cos(|δ|/2)) up to that sign convention:
-// the angle between x and x ⊞ δ is |δ|/2 on both Ceres APIs, and the result stays unit.
-TEST(CeresCompat, UnitSpherePlusTurnsByHalfTheStepAndStaysUnit) {
+// Known value: the Householder reflection maps the pole (0, 0, 1) onto x, so x ⊞ δ turns x by
+// the angle its map gives the pole: k|δ| with k = kUnitSphereTurnPerStep (1/2 up to Ceres 2.1,
+// 1 from 2.2), and stays unit.
+TEST(CeresCompat, UnitSpherePlusTurnsByTheStepAndStaysUnit) {
   std::unique_ptr<Parameterization> sphere(ceres_compat::NewUnitSphere3());
+  const double k = ceres_compat::kUnitSphereTurnPerStep;
   for (const Eigen::Vector3d& start :
        {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0.6, 0.0, -0.8)}) {
     const double delta[2] = {0.03, -0.04};  // |δ| = 0.05
     Eigen::Vector3d y;
     ASSERT_TRUE(ceres_compat::Plus(*sphere, start.data(), delta, y.data()));
     EXPECT_NEAR(y.norm(), 1.0, 1e-14);
-    EXPECT_NEAR(std::acos(std::clamp(y.dot(start), -1.0, 1.0)), 0.025, 1e-12)
+    EXPECT_NEAR(std::acos(std::clamp(y.dot(start), -1.0, 1.0)), k * 0.05, 1e-12)
         << "start " << start.transpose();
   }
 }
 
 TEST(CeresCompat, UnitSphereJacobianSpansTheTangentPlane) {
   std::unique_ptr<Parameterization> sphere(ceres_compat::NewUnitSphere3());
+  const double k = ceres_compat::kUnitSphereTurnPerStep;
   const Eigen::Vector3d x = Eigen::Vector3d(0.2, 0.5, -0.7).normalized();
   Eigen::Matrix<double, 3, 2, Eigen::RowMajor> j;
   ASSERT_TRUE(ceres_compat::PlusJacobian(*sphere, x.data(), j.data()));
   EXPECT_NEAR((x.transpose() * j).norm(), 0.0, 1e-14);  // tangent to the sphere at x
-  // Columns of length 1/2 (the half-angle map), orthogonal to each other.
+  // Orthogonal columns of length k.
   const Eigen::Matrix2d gram = j.transpose() * j;
-  EXPECT_NEAR(gram(0, 0), 0.25, 1e-14);
-  EXPECT_NEAR(gram(1, 1), 0.25, 1e-14);
+  EXPECT_NEAR(gram(0, 0), k * k, 1e-14);
+  EXPECT_NEAR(gram(1, 1), k * k, 1e-14);
   EXPECT_NEAR(gram(0, 1), 0.0, 1e-14);
 }
 
@@ -67,9 +69,10 @@ TEST(CeresCompat, EigenQuaternionPlusIsALeftRotation) {
   Eigen::Quaterniond out;
   ASSERT_TRUE(
       ceres_compat::Plus(*quaternion, q.coeffs().data(), delta.data(), out.coeffs().data()));
-  // Known value: exp(δ) ⊗ q with exp(δ) the rotation by |δ| about δ/|δ|.
+  // Known value: [δ/|δ| sin|δ|, cos|δ|] ⊗ q, the rotation by 2|δ| about δ/|δ| applied after q
+  // (the same on every Ceres of the range).
   const Eigen::Quaterniond expected =
-      Eigen::Quaterniond(Eigen::AngleAxisd(delta.norm(), delta.normalized())) * q;
+      Eigen::Quaterniond(Eigen::AngleAxisd(2.0 * delta.norm(), delta.normalized())) * q;
   EXPECT_NEAR((out.coeffs() - expected.coeffs()).norm(), 0.0, 1e-14);
 }
 

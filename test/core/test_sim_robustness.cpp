@@ -10,6 +10,7 @@
 #include "is_graphs/sim/simulation.h"
 #include "is_graphs/sim/simulation_runner.h"
 #include "sim_office_helpers.h"
+#include "sim_test_helpers.h"
 
 namespace is_graphs {
 namespace sim {
@@ -74,6 +75,7 @@ const std::string& kRoot = testing::kSourceRoot;
 
 using testing::HaveConverter;
 using testing::Prepare;
+using testing::SameScan;
 
 // What a run delivers, in order.
 struct Recorder : SimulationSink {
@@ -93,20 +95,6 @@ struct Recorder : SimulationSink {
   std::vector<LidarScan> scans;
   std::vector<double> publish_times;
 };
-
-// Field by field (LidarPoint has padding after `ring`, which memcmp would compare).
-bool SameScan(const LidarScan& a, const LidarScan& b) {
-  if (a.stamp != b.stamp || a.points.size() != b.points.size()) return false;
-  for (std::size_t i = 0; i < a.points.size(); ++i) {
-    const LidarPoint& p = a.points[i];
-    const LidarPoint& q = b.points[i];
-    if (p.x != q.x || p.y != q.y || p.z != q.z || p.intensity != q.intensity || p.ring != q.ring ||
-        p.time != q.time) {
-      return false;
-    }
-  }
-  return true;
-}
 
 // 8 s in the office: Corridor -> 102, carried at 5 s to the meeting room, then towards the
 // corridor; scans dropped in [2, 3.05) with kDropout. Perfect odometry, so the carry is all it

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <numeric>
 
@@ -174,7 +173,7 @@ TEST(SimScan, SameSeedSameScanOtherIndexOtherNoise) {
   const LidarScan sb = b.simulator->Simulate(4, 0.4);
   ASSERT_EQ(sa.points.size(), sb.points.size());
   for (std::size_t i = 0; i < sa.points.size(); ++i) {
-    ASSERT_EQ(std::memcmp(&sa.points[i], &sb.points[i], sizeof(LidarPoint)), 0) << i;
+    ASSERT_TRUE(testing::SamePoint(sa.points[i], sb.points[i])) << i;
   }
   const LidarScan other = a.simulator->Simulate(5, 0.4);  // same pose, other noise stream
   std::size_t same = 0;

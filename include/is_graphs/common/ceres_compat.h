@@ -6,10 +6,13 @@
 // 20.04, Debian 11) and 2.0 (Ubuntu 22.04) have only LocalParameterization. The project needs two
 // parameterizations, on both APIs the same maps:
 //   - the unit sphere S² for plane normals: Ceres' SphereManifold<3> (2.1+) and
-//     HomogeneousVectorParameterization(3) (older) share one Plus (Householder-based, see
-//     docs/platforms.md) and a 2-D tangent space;
+//     HomogeneousVectorParameterization(3) (older): a Householder-based Plus on a 2-D tangent
+//     space that turns x by kUnitSphereTurnPerStep · |δ| (Ceres 2.2 doubled it: the same
+//     directions, a tangent scaled by 2, which Ceres' Jacobian scaling makes immaterial to the
+//     minimizer);
 //   - the unit quaternion in Eigen's (x, y, z, w) order: EigenQuaternionManifold (2.1+) and
-//     EigenQuaternionParameterization (older), q ⊞ δ = exp(δ) ⊗ q, a 3-D tangent space.
+//     EigenQuaternionParameterization (older), q ⊞ δ = [δ/|δ| sin|δ|, cos|δ|] ⊗ q (a rotation
+//     by 2|δ| about δ), a 3-D tangent space.
 // Everything else the project uses of Ceres is the same in 1.14 and 2.2.
 
 #include <ceres/problem.h>
@@ -26,6 +29,14 @@
 
 namespace is_graphs {
 namespace ceres_compat {
+
+/// The angle (rad) the unit-sphere Plus turns x by per unit of |δ|: 1/2 up to Ceres 2.1, 1 from
+/// 2.2 on (SphereManifold's step changed there).
+#if CERES_VERSION_MAJOR > 2 || (CERES_VERSION_MAJOR == 2 && CERES_VERSION_MINOR >= 2)
+constexpr double kUnitSphereTurnPerStep = 1.0;
+#else
+constexpr double kUnitSphereTurnPerStep = 0.5;
+#endif
 
 #if IS_GRAPHS_CERES_HAS_MANIFOLD
 /// What ceres::Problem::AddParameterBlock takes as a block's parameterization.
