@@ -67,9 +67,10 @@ TEST(CeresCompat, EigenQuaternionPlusIsALeftRotation) {
   Eigen::Quaterniond out;
   ASSERT_TRUE(ceres_compat::Plus(*quaternion, q.coeffs().data(), delta.data(),
                                  out.coeffs().data()));
-  // Known value: exp(δ) ⊗ q with exp(δ) the rotation by |δ| about δ/|δ|.
+  // Known value: exp(δ) ⊗ q with Ceres' exp(δ) = [cos|δ|, sin|δ| δ/|δ|], the rotation by 2|δ|
+  // about δ/|δ| (δ is half the rotation vector, in 1.14's parameterization and 2.x's manifold).
   const Eigen::Quaterniond expected =
-      Eigen::Quaterniond(Eigen::AngleAxisd(delta.norm(), delta.normalized())) * q;
+      Eigen::Quaterniond(Eigen::AngleAxisd(2.0 * delta.norm(), delta.normalized())) * q;
   EXPECT_NEAR((out.coeffs() - expected.coeffs()).norm(), 0.0, 1e-14);
 }
 
