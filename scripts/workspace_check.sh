@@ -34,6 +34,7 @@ set -uo pipefail
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 
 repo="$(git -C "$(dirname "$0")" rev-parse --show-toplevel)" || exit 2
+head="$(git -C "${repo}" rev-parse HEAD)"  # what every workspace clones
 base="${WORKSPACE_CHECK_DIR:-/tmp/is_graphs_ws}"
 jobs="${JOBS:-2}"
 default_tests='gtest_test_core$ pytest_bim_scripts$ pytest_make_bag$ pytest_rviz_config$
@@ -87,7 +88,7 @@ make_workspace() {
   rm -rf "${ws}"
   mkdir -p "${ws}/src" "${ws}/ros_home"
   git clone --quiet --no-checkout "${repo}" "${ws}/src/is_graphs" || return 1
-  git -C "${ws}/src/is_graphs" checkout --quiet --detach "$(git -C "${repo}" rev-parse HEAD)" ||
+  git -C "${ws}/src/is_graphs" checkout --quiet --detach "${head}" ||
     return 1
   if [ "${WORKSPACE_CHECK_UNCOMMITTED:-0}" = 1 ]; then
     git -C "${repo}" diff HEAD --binary | git -C "${ws}/src/is_graphs" apply --allow-empty --whitespace=nowarn ||
@@ -228,7 +229,7 @@ for tool in "${tools[@]}"; do
 done
 
 echo
-echo "is_graphs $(git -C "${repo}" rev-parse --short HEAD), $(date -u +%Y-%m-%d), TESTS=$(
+echo "is_graphs ${head:0:7}, $(date -u +%Y-%m-%d), TESTS=$(
   [ "${tests}" = "${default_tests}" ] && echo default || echo "'${tests}'" | tr '\n' ' ')"
 printf '| %-12s | %-6s | %9s | %-40s | %8s |\n' tool build "build min" tests "test min"
 printf '|%s|%s|%s|%s|%s|\n' --------------  -------- ----------- \
