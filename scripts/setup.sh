@@ -7,7 +7,7 @@ export PATH="/usr/bin:/bin:/usr/sbin:/sbin:${PATH}"
 
 # The platforms setup knows (docs/platforms.md): Debian 11, 12 and 13 ship ROS 1 and every
 # package of scripts/apt-packages.txt under the same names. Elsewhere (Ubuntu with ROS Noetic or
-# ROS-O) the names differ: use rosdep (README, "In your own workspace").
+# ROS-O) the names differ: use rosdep (docs/platforms.md, "Your own workspace").
 . /etc/os-release 2>/dev/null || true
 case "${ID:-}:${VERSION_ID:-}" in
   debian:11 | debian:12 | debian:13) ;;

@@ -22,6 +22,7 @@
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/graph_match.h"
 #include "is_graphs/matching/synthetic_sgraph.h"
+#include "converter_check.h"
 
 namespace is_graphs {
 namespace testing {
@@ -39,6 +40,8 @@ inline const agraph::AGraph* LoadBuildingOnce(const std::string& path, std::stri
   } else if (!std::filesystem::exists(config.converter) ||
              !std::filesystem::exists(config.python)) {
     *why = "no IFC converter (" + config.python + " " + config.converter + "): run make setup";
+  } else if (!IfcConverterMissing().empty()) {
+    *why = IfcConverterMissing();
   } else {
     auto loaded = agraph::LoadBim(path, config);
     if (loaded.ok())

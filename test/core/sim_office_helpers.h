@@ -11,6 +11,7 @@
 
 #include "is_graphs/sim/scenario_yaml.h"
 #include "is_graphs/sim/simulation.h"
+#include "converter_check.h"
 
 namespace is_graphs {
 namespace sim {
@@ -18,10 +19,10 @@ namespace testing {
 
 inline const std::string kSourceRoot = IS_GRAPHS_SOURCE_DIR;
 
-/// Whether the office IFC and the project's venv (IfcOpenShell) are there.
+/// Whether the office IFC and an IFC converter (IS_GRAPHS_PYTHON with IfcOpenShell) are there.
 inline bool HaveConverter() {
   return std::ifstream(kSourceRoot + "/bim/office.ifc").good() &&
-         std::ifstream(kSourceRoot + "/.venv/bin/python3").good();
+         is_graphs::testing::IfcConverterMissing().empty();
 }
 
 /// Parses `yaml` (paths relative to the source root) and prepares its simulation; nullptr and

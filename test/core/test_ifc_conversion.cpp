@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "converter_check.h"
 #include "fixtures.h"
 #include "is_graphs/agraph/ifc_conversion.h"
 
@@ -61,6 +62,7 @@ TEST(IfcConversion, RealConverterOnTheOfficeBuilding) {
   if (config.python.find('/') != std::string::npos && access(config.python.c_str(), X_OK) != 0) {
     GTEST_SKIP() << "no Python at " << config.python << " (make setup creates the venv)";
   }
+  if (!testing::IfcConverterMissing().empty()) GTEST_SKIP() << testing::IfcConverterMissing();
   const std::string dir = testing::ScratchDir("ifc_conversion_real");
   config.cache_dir = dir + "/cache";
   const Result<std::string> converted = ConvertIfc(config, ifc);

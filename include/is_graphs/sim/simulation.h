@@ -55,7 +55,8 @@ struct Simulation {
 };
 
 /// Where the converted IFC files are cached: $ROS_HOME/is_graphs/bim_cache when ROS_HOME is
-/// set, else <base_dir>/.ws/bim_cache.
+/// set, else <base_dir>/.ws/bim_cache when <base_dir>/.ws is there (the project's own
+/// workspace), else ~/.ros/is_graphs/bim_cache (ROS's default ROS_HOME).
 std::string DefaultBimCacheDir(const std::string& base_dir);
 
 /// Loads the building (converting an IFC through the cache), builds the scene with clutter and

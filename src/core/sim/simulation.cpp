@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 #include "is_graphs/agraph/agraph_queries.h"
@@ -148,7 +149,12 @@ bool Simulation::ScanDropped(int k) const {
 std::string DefaultBimCacheDir(const std::string& base_dir) {
   const char* ros_home = std::getenv("ROS_HOME");
   if (ros_home && *ros_home) return std::string(ros_home) + "/is_graphs/bim_cache";
-  return Resolve(base_dir.empty() ? "." : base_dir, ".ws/bim_cache");
+  // The project's own workspace (.ws/, `make build`) keeps it; any other, like ROS, in ~/.ros.
+  const std::string ws = Resolve(base_dir.empty() ? "." : base_dir, ".ws");
+  if (std::filesystem::is_directory(ws)) return ws + "/bim_cache";
+  const char* home = std::getenv("HOME");
+  if (home && *home) return std::string(home) + "/.ros/is_graphs/bim_cache";
+  return "/tmp/is_graphs/bim_cache";
 }
 
 std::optional<double> FloorHeightAt(const geometry::TriangleMesh& mesh, const Eigen::Vector2d& xy,
