@@ -4,6 +4,9 @@
 // is in is_graphs_core (merging::Merger). Solves run on a worker thread that takes the newest
 // S-Graph and match, so a slow solve never piles up callbacks; no pose before the first merge
 // holds, and none after it was contradicted (LOST) until a new UNIQUE match merges.
+// Odometry passes the same guard as sgraph_node's (NaN, glitches, lasting steps; config/
+// odometry_guard.yaml); a watchdog over odometry, tf map -> odom and the S-Graph's revisions
+// turns LOCALIZED into DEGRADED and then LOST (docs/faults.md); health on /diagnostics.
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <is_graphs/AGraph.h>
@@ -19,6 +22,10 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <diagnostic_updater/diagnostic_updater.h>
+
+#include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <cstdlib>
 #include <mutex>
@@ -27,13 +34,18 @@
 #include "agraph_conversions.h"
 #include "graph_match_conversions.h"
 #include "is_graphs/geometry/se3.h"
+#include "is_graphs/common/odometry_guard.h"
+#include "is_graphs/merging/input_watchdog.h"
 #include "is_graphs/merging/merge_state.h"
 #include "is_graphs/merging/merger.h"
 #include "is_graphs/merging/pose_covariance.h"
+#include "is_graphs/sgraph/finite_checks.h"
+#include "merger_diagnostics.h"
 #include "merger_markers.h"
 #include "merger_params.h"
 #include "param_helpers.h"
 #include "pose_conversions.h"
+#include "rate_meter.h"
 #include "sgraph_conversions.h"
 #include "sgraph_session.h"
 #include "tf_lookup.h"
@@ -44,17 +56,6 @@ namespace {
 
 using ros_merger::MergerNodeParams;
 
-/// The robot's pose covariance in B (merging::RobotPoseCovariance) as a message field.
-boost::array<double, 36> PoseCovariance(const Eigen::Matrix3d& xi_covariance,
-                                        const Eigen::Isometry3d& bim_T_map,
-                                        const Eigen::Vector3d& p_map,
-                                        const merging::MergerConfig& config) {
-  boost::array<double, 36> out;
-  ros_conversions::ToArray(merging::RobotPoseCovariance(xi_covariance, bim_T_map, p_map, config),
-                           out);
-  return out;
-}
-
 class MergerNode {
  public:
   MergerNode(ros::NodeHandle& nh, const MergerNodeParams& params)
@@ -62,7 +63,9 @@ class MergerNode {
         merger_(params.merger),
         tf_buffer_(ros::Duration(30.0)),
         tf_listener_(tf_buffer_),
-        tf_(tf_buffer_) {
+        tf_(tf_buffer_),
+        guard_(params.odometry_guard),
+        watchdog_(params.watchdog) {
     pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("pose_bim", 10);
     status_pub_ = nh.advertise<is_graphs::LocalizationStatus>("localization_status", 1, true);
     is_graph_pub_ = nh.advertise<is_graphs::ISGraph>("is_graph", 1, true);
@@ -73,6 +76,13 @@ class MergerNode {
     odom_sub_ = nh.subscribe("odom", 100, &MergerNode::OnOdometry, this);
     status_timer_ = nh.createTimer(ros::Duration(1.0 / params_.status_rate),
                                    [this](const ros::TimerEvent&) { PublishStatus(); });
+    watchdog_timer_ = nh.createTimer(ros::Duration(1.0 / params_.watchdog_rate),
+                                     [this](const ros::TimerEvent&) { OnWatchdogTimer(); });
+    diagnostics_.setHardwareID("is_graphs");
+    diagnostics_.add("localization", this, &MergerNode::DiagnoseLocalization);
+    diagnostics_.add("inputs", this, &MergerNode::DiagnoseInputs);
+    diagnostics_timer_ = nh.createTimer(ros::Duration(1.0),
+                                        [this](const ros::TimerEvent&) { diagnostics_.update(); });
     PublishStatus();
     worker_ = std::thread([this] { Work(); });
   }
@@ -95,7 +105,16 @@ class MergerNode {
   }
 
   void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
+    const std::string bad = sgraph::FirstNonFinite(ros_conversions::FromMsg(*msg));
     std::unique_lock<std::mutex> lock(mutex_);
+    if (!bad.empty()) {
+      ++sgraph_rejected_;
+      ROS_WARN_THROTTLE(2.0, "merger_node: %s revision %u: non-finite %s: revision ignored",
+                        s_sub_.getTopic().c_str(), msg->revision, bad.c_str());
+      return;
+    }
+    ++sgraph_revisions_;
+    watchdog_.OnSGraph(state_.distance_walked());
     const bool new_session = latest_s_ && ros_sgraph::IsNewSession(*latest_s_, *msg);
     if (new_session) {
       ROS_WARN(
@@ -117,6 +136,7 @@ class MergerNode {
 
   void OnMatch(const is_graphs::GraphMatch::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
+    ++matches_;
     // A pending UNIQUE match is not replaced by a later non-UNIQUE one.
     if (pending_match_ && pending_match_->status == is_graphs::GraphMatch::UNIQUE &&
         msg->status != is_graphs::GraphMatch::UNIQUE)
@@ -127,10 +147,26 @@ class MergerNode {
   }
 
   void OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
-    std::unique_lock<std::mutex> lock(mutex_);
+    odometry_rate_.Tick();
     const ros::Time stamp = msg->header.stamp;
-    const bool went_back =
-        !last_odom_stamp_.isZero() && stamp + ros::Duration(1.0) < last_odom_stamp_;
+    const Eigen::Isometry3d reading = ros_conversions::FromPose(msg->pose.pose);
+    std::unique_lock<std::mutex> lock(mutex_);
+    ++odometry_received_;
+    const common::OdometryGuard::Result checked = guard_.Check(stamp.toSec(), reading);
+    if (!checked.usable()) {
+      ++odometry_skipped_;
+      last_odometry_problem_ = std::string(common::ToString(checked.verdict)) + ": " +
+                               checked.message;
+      ROS_WARN_THROTTLE(2.0, "merger_node: %s: %s (%s): skipped, no pose extrapolated through it",
+                        odom_sub_.getTopic().c_str(), common::ToString(checked.verdict),
+                        checked.message.c_str());
+      return;
+    }
+    if (checked.verdict == common::OdometryGuard::Verdict::kBridged) {
+      ++odometry_bridged_;
+      ROS_WARN("merger_node: %s: %s", odom_sub_.getTopic().c_str(), checked.message.c_str());
+    }
+    const bool went_back = checked.verdict == common::OdometryGuard::Verdict::kTimeBack;
     if (went_back) {
       ROS_WARN("merger_node: odometry went back in time by %.1f s (bag restarted?): merge reset",
                (last_odom_stamp_ - stamp).toSec());
@@ -140,8 +176,10 @@ class MergerNode {
       session_revision_ = 0;
     }
     last_odom_stamp_ = stamp;
-    const Eigen::Isometry3d odom_T_base = ros_conversions::FromPose(msg->pose.pose);
+    // odom_T_base: the reading as the S-Graph uses it (the guard's bridge of a lasting step).
+    const Eigen::Isometry3d odom_T_base = checked.odom_T_base;
     state_.AddOdometry(stamp.toSec(), odom_T_base.translation());
+    watchdog_.OnOdometry(stamp.toSec(), state_.distance_walked());
     if (!localized_) {
       lock.unlock();
       if (went_back) PublishStatus();  // the change at once, not at the next status tick
@@ -150,19 +188,35 @@ class MergerNode {
     const merging::OdometryAnchor anchor = anchor_;
     const Eigen::Isometry3d bim_T_map = bim_T_map_;
     const Eigen::Matrix3d covariance = covariance_;
+    const bool degraded = state_.state() == merging::LocalizationState::kDegraded;
+    const double since_sgraph = watchdog_.Check(stamp.toSec()).distance_since_sgraph;
     lock.unlock();
 
     // The pose: the merged revision's newest keyframe and the odometry since, calibrated (no tf
     // needed).
     const Eigen::Isometry3d bim_T_base = anchor.Pose(odom_T_base);
+    if (!bim_T_base.matrix().allFinite()) {  // the last line: never a NaN pose
+      ++nonfinite_poses_;
+      ROS_ERROR_THROTTLE(2.0,
+                         "merger_node: a non-finite pose from odometry at %.3f s and the merge: "
+                         "not published",
+                         stamp.toSec());
+      return;
+    }
     geometry_msgs::PoseWithCovarianceStamped pose;
     pose.header.stamp = stamp;
     pose.header.frame_id = params_.bim_frame;
     pose.pose.pose = ros_conversions::ToPose(bim_T_base);
-    pose.pose.covariance = PoseCovariance(
+    Eigen::Matrix<double, 6, 6> pose_covariance = merging::RobotPoseCovariance(
         covariance, bim_T_map, bim_T_map.inverse() * bim_T_base.translation(), params_.merger);
+    if (degraded)
+      pose_covariance = merging::GrowWithOdometry(pose_covariance, since_sgraph, params_.watchdog);
+    ros_conversions::ToArray(pose_covariance, pose.pose.covariance);
     pose_pub_.publish(pose);
-    // tf bim -> map, such that bim -> map -> odom (the S-Graph's newest) -> base_link is that pose.
+    ++poses_;
+    // tf bim -> map, such that bim -> map -> odom (the S-Graph's newest) -> base_link is that pose;
+    // map -> odom and odom -> base_link are both in the readings' frame (sgraph_node's map -> odom
+    // carries the guard's bridge).
     if (stamp <= last_tf_stamp_) return;  // tf2 rejects repeated stamps
     auto map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, stamp);
     if (!map_T_odom.ok())
@@ -175,11 +229,46 @@ class MergerNode {
     }
     last_tf_stamp_ = stamp;
     geometry_msgs::TransformStamped t =
-        tf2::eigenToTransform(bim_T_base * (map_T_odom.value() * odom_T_base).inverse());
+        tf2::eigenToTransform(bim_T_base * (map_T_odom.value() * reading).inverse());
     t.header.stamp = stamp;
     t.header.frame_id = params_.bim_frame;
     t.child_frame_id = params_.map_frame;
     tf_broadcaster_.sendTransform(t);
+  }
+
+  // --- watchdog: the inputs' ages against the clock ---
+  void OnWatchdogTimer() {
+    const auto heartbeat = tf_.LatestStamp(params_.map_frame, params_.odom_frame);
+    const ros::Time now = ros::Time::now();
+    bool changed = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (heartbeat.ok()) watchdog_.OnMapToOdom(heartbeat.value().toSec());
+      changed = ApplyWatchdogLocked(watchdog_.Check(now.toSec()));
+    }
+    if (changed) PublishStatus();
+  }
+
+  // LOCALIZED -> DEGRADED -> LOST as inputs fall behind (never back to LOCALIZED on odometry
+  // alone: a merge of a new S-Graph revision does that, Apply). True when the state changed.
+  bool ApplyWatchdogLocked(const merging::InputWatchdog::Report& report) {
+    last_report_ = report;
+    using Health = merging::InputWatchdog::Health;
+    if (!localized_ || report.health == Health::kFresh) return false;
+    if (report.health == Health::kStopped) {
+      ROS_WARN("merger_node: LOST: %s; matching again", report.message.c_str());
+      localized_ = false;
+      reset_merger_ = true;
+      state_.SetLost("lost: " + report.message + "; matching again");
+      wake_.notify_all();
+      return true;
+    }
+    const bool was_localized = state_.localized();
+    state_.SetDegraded("degraded: " + report.message);
+    if (was_localized)
+      ROS_WARN("merger_node: DEGRADED: %s; the pose goes on with odometry alone",
+               report.message.c_str());
+    return was_localized;
   }
 
   // --- state (mutex_ held) ---
@@ -197,17 +286,56 @@ class MergerNode {
       msg.header.stamp = ros::Time::now();
       msg.header.frame_id = params_.bim_frame;
       msg.state = static_cast<uint8_t>(state_.state());
-      if (state_.localized())
+      if (state_.has_pose())
         msg.localized_since = ros::Time(std::max(state_.localized_since(), 0.0));
       msg.seconds_to_localize = state_.seconds_to_localize();
       msg.distance_to_localize = state_.distance_to_localize();
       msg.message = state_.message();
-      if (state_.localized())
-        msg.covariance =
-            PoseCovariance(covariance_, bim_T_map_, Eigen::Vector3d::Zero(), params_.merger);
+      if (state_.has_pose()) {
+        Eigen::Matrix<double, 6, 6> covariance = merging::RobotPoseCovariance(
+            covariance_, bim_T_map_, Eigen::Vector3d::Zero(), params_.merger);
+        if (state_.state() == merging::LocalizationState::kDegraded)
+          covariance = merging::GrowWithOdometry(covariance, last_report_.distance_since_sgraph,
+                                                 params_.watchdog);
+        ros_conversions::ToArray(covariance, msg.covariance);
+      }
       status_dirty_ = false;
     }
     status_pub_.publish(msg);
+  }
+
+  // --- /diagnostics ---
+  ros_merger::MergerHealthSnapshot Snapshot() {
+    ros_merger::MergerHealthSnapshot h;
+    h.odometry_rate = odometry_rate_.Rate(ros::Time::now());
+    std::lock_guard<std::mutex> lock(mutex_);
+    h.state = state_.state();
+    h.message = state_.message();
+    h.armed = localized_;
+    h.watchdog = last_report_;
+    h.odometry_received = odometry_received_;
+    h.odometry_skipped = odometry_skipped_;
+    h.odometry_bridged = odometry_bridged_;
+    h.last_odometry_problem = last_odometry_problem_;
+    h.sgraph_revisions = sgraph_revisions_;
+    h.sgraph_rejected = sgraph_rejected_;
+    h.matches = matches_;
+    h.poses = poses_;
+    h.nonfinite_poses = nonfinite_poses_;
+    h.last_merge_ms = last_merge_ms_;
+    h.max_merge_ms = max_merge_ms_;
+    return h;
+  }
+
+  void DiagnoseLocalization(diagnostic_updater::DiagnosticStatusWrapper& d) {
+    snapshot_ = Snapshot();
+    ros_merger::FillLocalization(snapshot_, d);
+  }
+
+  void DiagnoseInputs(diagnostic_updater::DiagnosticStatusWrapper& d) {
+    // Runs right after DiagnoseLocalization (the order added): the same snapshot.
+    ros_merger::FillInputs(snapshot_, snapshot_.odometry_skipped - skipped_reported_, d);
+    skipped_reported_ = snapshot_.odometry_skipped;
   }
 
   // --- worker ---
@@ -323,12 +451,19 @@ class MergerNode {
       std::lock_guard<std::mutex> lock(mutex_);
       if (reset_merger_) return;  // reset meanwhile: this result is stale
       const double stamp = s_msg.header.stamp.toSec();
+      last_merge_ms_ = sol.seconds * 1e3;
+      max_merge_ms_ = std::max(max_merge_ms_, last_merge_ms_);
       if (out.merged) {
+        if (!localized_) watchdog_.Arm(ros::Time::now().toSec(), state_.distance_walked());
         localized_ = true;
         bim_T_map_ = out.bim_T_map;
         anchor_ = out.anchor;
         covariance_ = out.covariance;
-        if (!state_.localized() || out.event == MergeEvent::kLocalized) {
+        // Back from DEGRADED only while every input is fresh (a new revision merged).
+        const bool fresh = watchdog_.Check(ros::Time::now().toSec()).health ==
+                           merging::InputWatchdog::Health::kFresh;
+        if ((!state_.localized() && (fresh || !state_.has_pose())) ||
+            out.event == MergeEvent::kLocalized) {
           state_.SetLocalized(stamp, "localized: " + out.message);
           publish_status = true;
         }
@@ -371,7 +506,12 @@ class MergerNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   ros::Publisher pose_pub_, status_pub_, is_graph_pub_, marker_pub_;
   ros::Subscriber a_sub_, s_sub_, match_sub_, odom_sub_;
-  ros::Timer status_timer_;
+  ros::Timer status_timer_, watchdog_timer_, diagnostics_timer_;
+  diagnostic_updater::Updater diagnostics_;
+  ros_merger::MergerHealthSnapshot snapshot_;  // the diagnostics' (timer callbacks)
+  long skipped_reported_{0};                   // the diagnostics'
+  ros_diagnostics::RateMeter odometry_rate_;
+  std::atomic<long> poses_{0}, nonfinite_poses_{0};
 
   std::mutex mutex_;  // guards everything below
   std::condition_variable wake_;
@@ -389,6 +529,13 @@ class MergerNode {
   merging::OdometryAnchor anchor_;  // the pose: anchor_.Pose(odom_T_base)
   Eigen::Matrix3d covariance_{Eigen::Matrix3d::Identity()};
   merging::MergeState state_;
+  common::OdometryGuard guard_;
+  merging::InputWatchdog watchdog_;
+  merging::InputWatchdog::Report last_report_;
+  long odometry_received_{0}, odometry_skipped_{0}, odometry_bridged_{0};
+  std::string last_odometry_problem_;
+  long sgraph_revisions_{0}, sgraph_rejected_{0}, matches_{0};
+  double last_merge_ms_{0.0}, max_merge_ms_{0.0};
   ros::Time last_odom_stamp_;
   ros::Time last_tf_stamp_;
   std::thread worker_;

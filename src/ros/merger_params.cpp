@@ -53,6 +53,18 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "match_wait", p.match_wait);
   Read(pnh, "status_rate", p.status_rate);
   Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
+  Read(pnh, "watchdog_rate", p.watchdog_rate);
+  auto& w = p.watchdog;
+  Read(pnh, "degraded_after", w.degraded_after);
+  Read(pnh, "lost_after", w.lost_after);
+  Read(pnh, "max_distance_without_sgraph", w.max_distance_without_sgraph);
+  Read(pnh, "lost_distance_without_sgraph", w.lost_distance_without_sgraph);
+  Read(pnh, "degraded_sigma_per_m", w.degraded_sigma_per_m);
+  Read(pnh, "degraded_yaw_sigma_deg_per_m", w.degraded_yaw_sigma_deg_per_m);
+  if (const std::string e = w.Validate(); !e.empty())
+    throw ros_params::ParamError("parameter '" + pnh.resolveName(e.substr(0, e.find(' '))) +
+                                 "'" + e.substr(e.find(' ')));
+  ros_params::ReadOdometryGuard(pnh, p.odometry_guard);
   p.markers.frame_id = p.bim_frame;
   for (const auto& [name, value] :
        {std::pair<const char*, const std::string*>{"bim_frame", &p.bim_frame},
@@ -61,7 +73,9 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
     if (value->empty())
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must not be empty");
   for (const auto& [name, value] :
-       {std::pair<const char*, double>{"match_wait", p.match_wait}, {"status_rate", p.status_rate}})
+       {std::pair<const char*, double>{"match_wait", p.match_wait},
+        {"status_rate", p.status_rate},
+        {"watchdog_rate", p.watchdog_rate}})
     if (!(value > 0.0))
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
   const std::string error = c.Validate();

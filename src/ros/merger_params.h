@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "is_graphs/common/odometry_guard.h"
+#include "is_graphs/merging/input_watchdog.h"
 #include "is_graphs/merging/merger_config.h"
 #include "merger_markers.h"
 
@@ -15,6 +17,9 @@ struct MergerNodeParams {
   std::string bim_frame{"bim"}, map_frame{"map"}, odom_frame{"odom"};
   double match_wait{2.0};   // s: a match for an S-Graph revision not seen yet waits this long
   double status_rate{1.0};  // Hz
+  common::OdometryGuardConfig odometry_guard;  // config/odometry_guard.yaml, as sgraph_node's
+  merging::WatchdogConfig watchdog;
+  double watchdog_rate{20.0};  // Hz: the inputs' ages are checked this often
   ros_markers::MergerMarkerStyle markers;
 };
 

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "is_graphs/common/odometry_guard.h"
+
 namespace is_graphs {
 namespace ros_params {
 
@@ -28,6 +30,11 @@ void Read(const ros::NodeHandle& nh, const std::string& name, unsigned int& valu
 
 /// The private parameter `name`, which must be set to a non-empty string.
 std::string RequireString(const ros::NodeHandle& nh, const std::string& name);
+
+/// The odometry guard's parameters (config/odometry_guard.yaml, loaded into every node that reads
+/// odometry so that all agree): max_linear_speed, max_angular_speed, max_linear_acceleration,
+/// max_angular_acceleration, odometry_linear_slack, odometry_angular_slack, step_confirm_time.
+void ReadOdometryGuard(const ros::NodeHandle& nh, common::OdometryGuardConfig& config);
 
 /// Throws ParamError naming the parameter when `error` (a config's Validate() result) is set.
 void ThrowIfInvalid(const std::string& component, const std::string& error);

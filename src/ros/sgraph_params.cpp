@@ -44,6 +44,8 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "max_odom_extrapolation", f.max_odom_extrapolation);
   Read(pnh, "odom_wait", f.odom_wait);
   Read(pnh, "time_reset_threshold", f.time_reset_threshold);
+  f.odometry_guard.time_reset_threshold = f.time_reset_threshold;
+  ros_params::ReadOdometryGuard(pnh, f.odometry_guard);
   Read(pnh, "min_range", f.min_range);
   Read(pnh, "max_range", f.max_range);
   Read(pnh, "voxel_size", f.voxel_size);

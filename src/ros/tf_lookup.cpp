@@ -14,7 +14,21 @@ Result<Eigen::Isometry3d> TfLookup::Lookup(const std::string& target, const std:
     return R::Error("no transform from '" + source + "' to '" + target + "': empty frame name");
   try {
     const auto t = buffer_.lookupTransform(target, source, time, timeout);
-    return R::Ok(tf2::transformToEigen(t));
+    const Eigen::Isometry3d out = tf2::transformToEigen(t);
+    if (!out.matrix().allFinite())
+      return R::Error("the transform from '" + source + "' to '" + target +
+                      "' is not finite (NaN or inf in tf)");
+    return R::Ok(out);
+  } catch (const tf2::TransformException& e) {
+    return R::Error("no transform from '" + source + "' to '" + target + "': " + e.what());
+  }
+}
+
+Result<ros::Time> TfLookup::LatestStamp(const std::string& target,
+                                         const std::string& source) const {
+  using R = Result<ros::Time>;
+  try {
+    return R::Ok(buffer_.lookupTransform(target, source, ros::Time(0)).header.stamp);
   } catch (const tf2::TransformException& e) {
     return R::Error("no transform from '" + source + "' to '" + target + "': " + e.what());
   }

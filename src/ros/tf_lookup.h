@@ -14,7 +14,7 @@ namespace is_graphs {
 namespace ros_tf {
 
 /// The one place where the nodes look up tf: tf2::TransformException never escapes, a failed
-/// lookup is an error naming the frames and tf's reason.
+/// lookup is an error naming the frames and tf's reason, and so is a non-finite transform.
 class TfLookup {
  public:
   explicit TfLookup(const tf2_ros::Buffer& buffer) : buffer_(buffer) {}
@@ -23,6 +23,9 @@ class TfLookup {
   Result<Eigen::Isometry3d> Lookup(const std::string& target, const std::string& source,
                                    const ros::Time& time,
                                    const ros::Duration& timeout = ros::Duration(0.0)) const;
+
+  /// The stamp of the newest target <- source tf holds (a heartbeat: how old that link is).
+  Result<ros::Time> LatestStamp(const std::string& target, const std::string& source) const;
 
   /// As Lookup at the latest time, cached after the first success: for static transforms
   /// (base_link <- sensor mounts).

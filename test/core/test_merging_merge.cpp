@@ -472,6 +472,27 @@ TEST(MergeState, TracksTimeAndDistanceToLocalize) {
   EXPECT_DOUBLE_EQ(state.distance_walked(), 0.0);
 }
 
+TEST(MergeState, DegradedKeepsThePoseAndGoesBackWithoutANewLocalization) {
+  MergeState state;
+  state.SetDegraded("late before localizing");  // nothing to degrade
+  EXPECT_EQ(state.state(), LocalizationState::kNotLocalized);
+  state.SetLocalized(15.0, "ok");
+  state.SetDegraded("no tf map -> odom for 1.2 s");
+  EXPECT_EQ(state.state(), LocalizationState::kDegraded);
+  EXPECT_TRUE(state.has_pose());
+  EXPECT_FALSE(state.localized());
+  EXPECT_EQ(state.message(), "no tf map -> odom for 1.2 s");
+  state.SetLocalized(17.0, "fresh again");
+  EXPECT_EQ(state.state(), LocalizationState::kLocalized);
+  EXPECT_DOUBLE_EQ(state.localized_since(), 15.0);
+  state.SetDegraded("late");
+  state.SetLost("stopped");
+  EXPECT_FALSE(state.has_pose());
+  state.SetDegraded("late again");
+  EXPECT_EQ(state.state(), LocalizationState::kLost);
+  EXPECT_STREQ(ToString(LocalizationState::kDegraded), "DEGRADED");
+}
+
 // Four surface pairs on the BIM and the one room pair off by 1 m (an S-room redrawn from a
 // worse view): a new merge is refused, a merge already made keeps going without that room.
 TEST(ConsistencyCheck, ARoomTurningOutlierDropsTheRoomNotTheMerge) {

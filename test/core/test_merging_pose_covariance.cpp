@@ -57,6 +57,21 @@ TEST(RobotPoseCovariance, AYawErrorMovesTheRobotByItsLeverArm) {
   EXPECT_NEAR((t.block<3, 3>(2, 2).norm()), 0.0, 1e-15);
 }
 
+TEST(GrowWithOdometry, AddsTheOdometrysErrorOverTheDistanceWalked) {
+  WatchdogConfig w;
+  w.degraded_sigma_per_m = 0.05;
+  w.degraded_yaw_sigma_deg_per_m = 1.0;
+  Eigen::Matrix<double, 6, 6> cov = Eigen::Matrix<double, 6, 6>::Identity() * 1e-4;
+  const auto grown = GrowWithOdometry(cov, 4.0, w);
+  EXPECT_NEAR(grown(0, 0), 1e-4 + 0.2 * 0.2, 1e-12);
+  EXPECT_NEAR(grown(1, 1), 1e-4 + 0.2 * 0.2, 1e-12);
+  EXPECT_NEAR(grown(2, 2), 1e-4, 1e-15);
+  const double yaw = 4.0 * M_PI / 180.0;
+  EXPECT_NEAR(grown(5, 5), 1e-4 + yaw * yaw, 1e-12);
+  EXPECT_EQ(GrowWithOdometry(cov, 0.0, w), cov);
+  EXPECT_EQ(GrowWithOdometry(cov, -1.0, w), cov);
+}
+
 }  // namespace
 }  // namespace merging
 }  // namespace is_graphs

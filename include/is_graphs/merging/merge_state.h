@@ -7,7 +7,7 @@ namespace is_graphs {
 namespace merging {
 
 /// As msg/LocalizationStatus.msg.
-enum class LocalizationState { kNotLocalized = 0, kLocalized = 1, kLost = 2 };
+enum class LocalizationState { kNotLocalized = 0, kLocalized = 1, kLost = 2, kDegraded = 3 };
 
 const char* ToString(LocalizationState state);
 
@@ -19,13 +19,20 @@ class MergeState {
   void AddOdometry(double stamp, const Eigen::Vector3d& position);
   /// A merge holds from `stamp` on. The first one records time and distance to localize.
   void SetLocalized(double stamp, const std::string& message);
-  /// A merge was dropped (contradicted): no pose until the next one.
+  /// A merge was dropped (contradicted, or its inputs stopped): no pose until the next one.
   void SetLost(const std::string& message);
+  /// Localized, but an input is late (InputWatchdog): the pose still holds, less trusted.
+  /// Only from LOCALIZED (or DEGRADED: the message changes); SetLocalized goes back.
+  void SetDegraded(const std::string& message);
   /// Back to not localized (a new building, or the S-Graph restarted); distance from zero.
   void Reset(const std::string& message);
 
   LocalizationState state() const { return state_; }
   bool localized() const { return state_ == LocalizationState::kLocalized; }
+  /// LOCALIZED or DEGRADED: a pose is published.
+  bool has_pose() const {
+    return state_ == LocalizationState::kLocalized || state_ == LocalizationState::kDegraded;
+  }
   double localized_since() const { return localized_since_; }
   double seconds_to_localize() const { return seconds_to_localize_; }
   double distance_to_localize() const { return distance_to_localize_; }

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "is_graphs/merging/input_watchdog.h"
 #include "is_graphs/merging/merger_config.h"
 
 namespace is_graphs {
@@ -16,6 +17,12 @@ Eigen::Matrix<double, 6, 6> RobotPoseCovariance(const Eigen::Matrix3d& xi_covari
                                                 const Eigen::Isometry3d& bim_T_map,
                                                 const Eigen::Vector3d& p_map,
                                                 const MergerConfig& config);
+
+/// `covariance` (as RobotPoseCovariance's) grown by the odometry's error over `distance` [m]
+/// walked since the newest S-Graph revision (the DEGRADED pose): + (degraded_sigma_per_m d)² on
+/// x and y, + (degraded_yaw_sigma_deg_per_m d)² on yaw.
+Eigen::Matrix<double, 6, 6> GrowWithOdometry(const Eigen::Matrix<double, 6, 6>& covariance,
+                                             double distance, const WatchdogConfig& config);
 
 }  // namespace merging
 }  // namespace is_graphs

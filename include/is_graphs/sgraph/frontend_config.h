@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "is_graphs/common/odometry_guard.h"
 #include "is_graphs/sgraph/doorway_detection.h"
 #include "is_graphs/sgraph/levels.h"
 
@@ -24,6 +25,9 @@ struct FrontendConfig {
   // clock, s; 0: never waits): a cloud that arrives before the odometry of its own sweep would
   // be deskewed with the pose held over the sweep's end (ScanOdometrySync).
   double odom_wait{0.3};
+  // What the odometry can do between two messages: NaN, glitches and lasting steps
+  // (common::OdometryGuard; merger_node runs the same guard with the same values).
+  common::OdometryGuardConfig odometry_guard;
 
   // Track loss (a kidnapped robot, an odometry jump): once the map holds track_loss_min_keyframes
   // keyframes, a keyframe that sees at least track_loss_min_walls wall segments of which at

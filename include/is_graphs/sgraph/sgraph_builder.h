@@ -11,6 +11,7 @@
 #include "is_graphs/sgraph/doorway_detection.h"
 #include "is_graphs/sgraph/frontend_config.h"
 #include "is_graphs/sgraph/keyframe_selector.h"
+#include "is_graphs/common/odometry_guard.h"
 #include "is_graphs/sgraph/odometry_buffer.h"
 #include "is_graphs/sgraph/plane_association.h"
 #include "is_graphs/sgraph/plane_extraction.h"
@@ -55,6 +56,9 @@ class SGraphBuilder {
     bool accepted{true};
     bool reset{false};  // time went backwards: the graph was reset
     std::string warning;
+    common::OdometryGuard::Verdict verdict{common::OdometryGuard::Verdict::kAccepted};
+    // The reading as the graph uses it (the guard's correction applied), when accepted.
+    Eigen::Isometry3d odom_T_base{Eigen::Isometry3d::Identity()};
   };
 
   SGraphBuilder(const FrontendConfig& frontend, const BackendConfig& backend);
@@ -67,7 +71,11 @@ class SGraphBuilder {
 
   SGraph Snapshot() const;
   /// map <- odom, from the latest keyframe's optimized and odometry poses.
+  /// map <- odom: the frame of the odometry readings as they come (tf map -> odom).
   Eigen::Isometry3d MapToOdom() const;
+  /// Messages the odometry guard skipped and lasting steps it bridged, since the start.
+  int odometry_rejected() const;
+  int odometry_bridged() const;
   /// The keyframes' clouds in M at their current poses, voxel-filtered.
   PointList MapCloud(double voxel_size) const;
   int num_keyframes() const;
@@ -137,7 +145,8 @@ class SGraphBuilder {
   mutable std::mutex mutex_;
   std::mutex optimize_mutex_;  // one optimization at a time
 
-  OdometryBuffer odometry_;
+  OdometryBuffer odometry_;  // corrected readings (guard_.correction() applied)
+  common::OdometryGuard guard_;
   KeyframeSelector selector_;
   double last_odom_stamp_{-1.0};
   double last_scan_stamp_{-1.0};
@@ -146,7 +155,7 @@ class SGraphBuilder {
   unsigned revision_{0};
   int optimized_keyframes_{0};
 
-  Eigen::Isometry3d map_T_odom_{Eigen::Isometry3d::Identity()};
+  Eigen::Isometry3d map_T_odom_{Eigen::Isometry3d::Identity()};  // map <- corrected odom
   std::vector<Keyframe> keyframes_;
   std::vector<PointList> clouds_;                 // per keyframe, in base_link
   size_t thinned_clouds_{0};                      // the first ones, out of the window: thinned

@@ -11,6 +11,8 @@ const char* ToString(LocalizationState state) {
       return "LOCALIZED";
     case LocalizationState::kLost:
       return "LOST";
+    case LocalizationState::kDegraded:
+      return "DEGRADED";
   }
   return "?";
 }
@@ -23,13 +25,19 @@ void MergeState::AddOdometry(double stamp, const Eigen::Vector3d& position) {
 }
 
 void MergeState::SetLocalized(double stamp, const std::string& message) {
-  if (state_ != LocalizationState::kLocalized) localized_since_ = stamp;
+  if (!has_pose()) localized_since_ = stamp;  // DEGRADED and back: localized all along
   if (!ever_localized_) {
     ever_localized_ = true;
     seconds_to_localize_ = first_stamp_ >= 0.0 ? stamp - first_stamp_ : 0.0;
     distance_to_localize_ = distance_;
   }
   state_ = LocalizationState::kLocalized;
+  message_ = message;
+}
+
+void MergeState::SetDegraded(const std::string& message) {
+  if (!has_pose()) return;
+  state_ = LocalizationState::kDegraded;
   message_ = message;
 }
 

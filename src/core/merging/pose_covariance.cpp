@@ -1,5 +1,6 @@
 #include "is_graphs/merging/pose_covariance.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace is_graphs {
@@ -26,6 +27,18 @@ Eigen::Matrix<double, 6, 6> RobotPoseCovariance(const Eigen::Matrix3d& xi_covari
   cov(4, 4) += std::pow(c.pose_sigma_roll_pitch_deg * deg, 2);
   cov(5, 5) += std::pow(c.pose_sigma_yaw_deg * deg, 2);
   return cov;
+}
+
+Eigen::Matrix<double, 6, 6> GrowWithOdometry(const Eigen::Matrix<double, 6, 6>& covariance,
+                                             double distance, const WatchdogConfig& config) {
+  Eigen::Matrix<double, 6, 6> out = covariance;
+  const double d = std::max(distance, 0.0);
+  const double s_xy = config.degraded_sigma_per_m * d;
+  const double s_yaw = config.degraded_yaw_sigma_deg_per_m * M_PI / 180.0 * d;
+  out(0, 0) += s_xy * s_xy;
+  out(1, 1) += s_xy * s_xy;
+  out(5, 5) += s_yaw * s_yaw;
+  return out;
 }
 
 }  // namespace merging

@@ -45,7 +45,7 @@ std::optional<Eigen::Isometry3d> LocalizationPipeline::AddOdometry(
     matcher_.ForgetHistory();
   }
   if (!r.accepted || !merger_.merged()) return std::nullopt;
-  return anchor_.Pose(odom_T_base);
+  return anchor_.Pose(r.odom_T_base);  // the reading as the S-Graph uses it (guard's bridge)
 }
 
 sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(

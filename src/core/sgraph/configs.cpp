@@ -93,6 +93,7 @@ std::string FrontendConfig::Validate() const {
   c.Positive("room_max_opening", room_max_opening);
   if (!c.error().empty()) return c.error();
   if (const std::string e = doorways.Validate(); !e.empty()) return e;
+  if (const std::string e = odometry_guard.Validate(); !e.empty()) return e;
   return levels.Validate();
 }
 

@@ -15,6 +15,7 @@ namespace sgraph {
 SGraphBuilder::SGraphBuilder(const FrontendConfig& frontend, const BackendConfig& backend)
     : frontend_(frontend),
       backend_(backend),
+      guard_(frontend.odometry_guard),
       selector_(frontend.keyframe_distance, frontend.keyframe_angle_deg * M_PI / 180.0),
       levels_(frontend.levels) {}
 
@@ -26,6 +27,9 @@ void SGraphBuilder::Reset() {
 void SGraphBuilder::ResetLocked() {
   last_track_check_ = -1.0;
   odometry_.Clear();
+  if (guard_.last_stamp() >= 0.0 && last_odom_stamp_ >= 0.0 &&
+      guard_.last_stamp() <= last_odom_stamp_)
+    guard_.Reset();  // not when time went back: the guard started over on that message itself
   selector_.Reset();
   last_odom_stamp_ = -1.0;
   last_scan_stamp_ = -1.0;
@@ -53,11 +57,16 @@ SGraphBuilder::OdometryResult SGraphBuilder::AddOdometry(double stamp,
   std::lock_guard<std::mutex> lock(mutex_);
   OdometryResult result;
   std::ostringstream warning;
-  if (!std::isfinite(stamp) || !odom_T_base.matrix().allFinite()) {
+  const common::OdometryGuard::Result checked = guard_.Check(stamp, odom_T_base);
+  result.verdict = checked.verdict;
+  if (!checked.usable()) {
     result.accepted = false;
-    result.warning = "odometry with a non-finite stamp or pose: skipped";
+    result.warning = "odometry " + std::string(common::ToString(checked.verdict)) + " (" +
+                     checked.message + "): skipped";
     return result;
   }
+  if (checked.verdict == common::OdometryGuard::Verdict::kBridged)
+    warning << checked.message << "; ";
   if (last_odom_stamp_ >= 0.0 && stamp < last_odom_stamp_ - frontend_.time_reset_threshold) {
     warning << "odometry time went backwards by " << last_odom_stamp_ - stamp
             << " s (a restarted bag?): the S-Graph is reset";
@@ -71,7 +80,8 @@ SGraphBuilder::OdometryResult SGraphBuilder::AddOdometry(double stamp,
     warning << "gap of " << stamp - last_odom_stamp_
             << " s in odometry: scans inside it are skipped";
   }
-  odometry_.Add(stamp, odom_T_base);
+  result.odom_T_base = checked.odom_T_base;
+  odometry_.Add(stamp, checked.odom_T_base);
   last_odom_stamp_ = stamp;
   result.warning = warning.str();
   return result;

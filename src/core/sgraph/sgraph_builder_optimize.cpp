@@ -195,7 +195,17 @@ void SGraphBuilder::ThinOldCloudsLocked() {
 
 Eigen::Isometry3d SGraphBuilder::MapToOdom() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return map_T_odom_;
+  return map_T_odom_ * guard_.correction();
+}
+
+int SGraphBuilder::odometry_rejected() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return guard_.rejected();
+}
+
+int SGraphBuilder::odometry_bridged() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return guard_.bridged();
 }
 
 PointList SGraphBuilder::MapCloud(double voxel_size) const {

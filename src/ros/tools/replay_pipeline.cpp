@@ -233,10 +233,15 @@ int main(int argc, char** argv) {
   out["localized_at_end"] = localization.localized();
   out["final_bim_x_map"] = bag_replay::XYYawDeg(localization.bim_T_map());
   out["map_cloud_error"] = bag_replay::MapCloudError(localization, building, ever_merged);
+  out["odometry_rejected"] = localization.builder().odometry_rejected();
+  out["odometry_bridged"] = localization.builder().odometry_bridged();
   std::printf(
       "UNIQUE matches %zu, wrong (> 0.5 m or 5 deg from the truth, or another storey) %d, of "
       "them on another storey %d\n",
       audit.json().size(), audit.wrong(), audit.wrong_storeys());
+  std::printf("odometry: %d messages skipped by the guard (NaN, glitch, out of order), %d steps "
+              "bridged\n",
+              localization.builder().odometry_rejected(), localization.builder().odometry_bridged());
   if (const auto& c = out["map_cloud_error"]; !c.is_null())
     std::printf("map cloud vs BIM wall-surfaces: RMSE %.3f m, median %.3f m (%d of %d points)\n",
                 c["rmse_m"].get<double>(), c["median_m"].get<double>(), c["used"].get<int>(),
