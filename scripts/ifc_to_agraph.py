@@ -6,7 +6,10 @@
 
 The last line on stdout is the absolute path of the .agraph.json. Warnings go to stderr as
 `ifc_to_agraph: warning: <file>: <IfcClass> #<id>: <what>`; fatal problems as
-`ifc_to_agraph: error: <file>: ...` with exit status 2.
+`ifc_to_agraph: error: <file>: ...` with exit status 2 (a path that is not a readable file:
+`ifc_to_agraph: error: <what>: <path>`). Before IfcOpenShell reads the file, every `#N` it
+references must be defined: dangling references that touch walls, spaces, storeys, doors or their
+placements and geometry are an error (--allow-dangling: a warning), others a warning.
 """
 import argparse
 import json
@@ -30,7 +33,7 @@ except ImportError:
           "scripts/setup.sh (it creates .venv with it)", file=sys.stderr)
     sys.exit(2)
 
-from is_graphs_bim import agraph_writer, cache, converter, ifc_model  # noqa: E402
+from is_graphs_bim import agraph_writer, cache, converter, ifc_model, integrity  # noqa: E402
 
 PROG = ifc_model.PROG
 
@@ -44,6 +47,9 @@ def _parse_args(argv):
     out.add_argument("--cache-dir", metavar="DIR",
                      help="keep results in DIR keyed by the IFC's sha256; reuse them")
     p.add_argument("--quiet", action="store_true", help="no per-storey summary")
+    p.add_argument("--allow-dangling", action="store_true",
+                   help="convert a file whose references to missing entities touch walls, "
+                        "spaces, storeys or doors (a warning instead of an error)")
     return p.parse_args(argv)
 
 
@@ -65,14 +71,15 @@ def main(argv=None):
     diag = ifc_model.Diagnostics(name)
 
     def convert_into(prefix):
-        result = converter.convert(args.input, diag)
+        result = converter.convert(args.input, diag, args.allow_dangling)
         return agraph_writer.write(result, prefix)
 
     try:
+        try:
+            integrity.check_path(args.input)    # before the cache reads it, or the output
+        except integrity.PathError as exc:
+            raise ifc_model.ConversionError(str(exc), names_path=True) from None
         if args.cache_dir:
-            if not os.path.isfile(args.input):
-                raise ifc_model.ConversionError("no such file" if not os.path.exists(args.input)
-                                                else "not a regular file")
             json_path, hit = cache.lookup(args.cache_dir, args.input)
             if hit:
                 _report(json_path, args.quiet, warnings_from_cache=True)
@@ -84,7 +91,11 @@ def main(argv=None):
         print(exc.line(name), file=sys.stderr)
         return 2
     except OSError as exc:
-        print(f"{PROG}: error: {name}: cannot write the output: {exc}", file=sys.stderr)
+        where = args.out_prefix or args.cache_dir
+        why = exc.strerror or str(exc)
+        if exc.filename and os.path.abspath(exc.filename) != os.path.abspath(where):
+            why = f"{exc.filename}: {why}"
+        print(f"{PROG}: error: {name}: cannot write the output {where}: {why}", file=sys.stderr)
         return 2
     except MemoryError:
         print(f"{PROG}: error: {name}: out of memory", file=sys.stderr)

@@ -434,9 +434,9 @@ def _storey_heights(storeys, wall_list):
     return out
 
 
-def convert(path, diag):
+def convert(path, diag, allow_dangling=False):
     """Converts one IFC file; raises ifc_model.ConversionError when it cannot."""
-    model, forced_unit = ifc_model.open_model(path, diag)
+    model, forced_unit = ifc_model.open_model(path, diag, allow_dangling)
     if not model.file.by_type("IfcWall"):
         raise ifc_model.ConversionError(
             "no IfcWall in the file: an A-Graph needs walls (were walls exported as IfcWall?)")

@@ -15,6 +15,8 @@ import ifcopenshell.util.element as uelement
 import ifcopenshell.util.placement as uplacement
 import ifcopenshell.util.unit as uunit
 
+from . import integrity
+
 PROG = "ifc_to_agraph"
 _SI_PREFIXES = {"EXA", "PETA", "TERA", "GIGA", "MEGA", "KILO", "HECTO", "DECA", "DECI", "CENTI",
                 "MILLI", "MICRO", "NANO", "PICO", "FEMTO", "ATTO"}
@@ -26,16 +28,18 @@ def entity_label(entity):
 
 
 class ConversionError(Exception):
-    """A fatal input problem; `entity` (optional) is the IFC entity it is about."""
+    """A fatal input problem; `entity` (optional) is the IFC entity it is about; `names_path`:
+    the message already names the file's path (then the line does not repeat its name)."""
 
-    def __init__(self, what, entity=None):
+    def __init__(self, what, entity=None, names_path=False):
         super().__init__(what)
         self.what = what
         self.entity = entity
+        self.names_path = names_path
 
     def line(self, file_name):
         where = f"{entity_label(self.entity)}: " if self.entity is not None else ""
-        return f"{PROG}: error: {file_name}: {where}{self.what}"
+        return f"{PROG}: error: {'' if self.names_path else file_name + ': '}{where}{self.what}"
 
 
 @dataclass
@@ -66,6 +70,18 @@ class IfcModel:
     building_name: str
 
 
+def _starts_with(head):
+    """'; it starts with <its first line>' for text, '; it is binary data' otherwise."""
+    line = head[:200].split(b"\n", 1)[0].strip()
+    try:
+        text = line.decode("utf-8")
+    except UnicodeDecodeError:
+        return "; it is binary data"
+    if not text.isprintable():
+        return "; it is binary data"
+    return f"; it starts with {text[:60]!r}" if text else ""
+
+
 def _check_bytes(path, data):
     head = data[:4096].lstrip(b"\xef\xbb\xbf \t\r\n")
     if head.startswith(b"PK\x03\x04"):
@@ -75,7 +91,7 @@ def _check_bytes(path, data):
         raise ConversionError("is XML (ifcXML?): only IFC-SPF text (ISO-10303-21) files are read")
     if not head.startswith(b"ISO-10303-21;"):
         raise ConversionError("not an IFC file: it does not start with 'ISO-10303-21;' "
-                              "(an IFC-SPF STEP file is expected)")
+                              f"(an IFC-SPF STEP file is expected){_starts_with(head)}")
     if b"FILE_SCHEMA" not in head:
         raise ConversionError("not an IFC file: no FILE_SCHEMA in its header")
     tail = data[-256:].rstrip(b" \t\r\n\x00\x1a")
@@ -86,7 +102,6 @@ def _check_bytes(path, data):
         raise ConversionError("truncated or malformed IFC file: HEADER or DATA section not closed")
 
 
-_ENTITY_LINE = re.compile(rb"(?m)^[ \t]*#\d+[ \t]*=")
 _FILE_SCHEMA = re.compile(rb"FILE_SCHEMA\s*\(\s*\(\s*'([^']*)'")
 # Older IFC2x editions IfcOpenShell has no schema for; the walls, spaces, doors, openings and
 # storeys the converter reads kept their names and attributes in IFC2X3, their successor.
@@ -188,6 +203,44 @@ def _underived_stars(data, schema):
     return _INSTANCE.sub(repl, data), fixed
 
 
+def _report_dangling(report, diag, allow_dangling):
+    """An error when dangling references touch what the converter reads (walls, spaces, storeys,
+    doors, ... their placements and geometry, their relations), else a warning."""
+    what = f"the file looks truncated or damaged: {report.describe()}"
+    if report.touches_model and not allow_dangling:
+        raise ConversionError(f"{what}. They touch walls, spaces, storeys, doors or their "
+                              "placements, geometry or relations, which IfcOpenShell would read "
+                              "as unset: re-export the file (--allow-dangling converts anyway)")
+    if report.touches_model:
+        diag.warn(f"{what}. Converted anyway (--allow-dangling): the missing placements, geometry "
+                  "or relations are read as unset; check the result")
+    else:
+        diag.warn(f"{what}. None touches walls, spaces, storeys, doors or their placements or "
+                  "geometry: converted")
+
+
+def _first_unread(data, parsed, schema):
+    """'; the first instance not read: #N=TYPE, after #P=TYPE' (IfcOpenShell stops reading at an
+    instance it cannot parse: unknown type, bad syntax)."""
+    try:
+        decls = ifcopenshell.ifcopenshell_wrapper.schema_by_name(schema)
+    except Exception:
+        decls = None
+    previous = None
+    for sid, kind in integrity.instances_in_order(data):
+        if sid not in parsed:
+            why = ""
+            if decls is not None:
+                try:
+                    decls.declaration_by_name(kind)
+                except Exception:
+                    why = f" (no entity {kind} in {schema}: an unknown entity type)"
+            after = f", after #{previous[0]}={previous[1]}" if previous else ""
+            return f"; the first instance not read: #{sid}={kind}{why}{after}"
+        previous = (sid, kind)
+    return ""
+
+
 def _quietly(read):
     """read() with Python's unraisable-exception hook silenced until what a failed read built is
     gone: IfcOpenShell destroys a file it gave up on half-built, and its destructor's KeyError
@@ -205,20 +258,17 @@ def _quietly(read):
         sys.unraisablehook = hook
 
 
-def open_model(path, diag):
-    """Reads and checks `path`; returns (IfcModel, forced_unit) or raises ConversionError."""
-    if not os.path.exists(path):
-        raise ConversionError("no such file")
-    if os.path.isdir(path):
-        raise ConversionError("is a directory, not an IFC file")
+def open_model(path, diag, allow_dangling=False):
+    """Reads and checks `path`; returns (IfcModel, forced_unit) or raises ConversionError.
+    allow_dangling: references to entities the file lacks are a warning, not an error."""
     try:
-        with open(path, "rb") as fh:
-            data = fh.read()
-    except OSError as exc:
-        raise ConversionError(f"cannot read: {exc.strerror}") from None
-    if not data:
-        raise ConversionError("empty file")
+        data = integrity.read_bytes(path)
+    except integrity.PathError as exc:
+        raise ConversionError(str(exc), names_path=True) from None
     _check_bytes(path, data)
+    defined, missing = integrity.defined_and_missing(data)
+    if missing:
+        _report_dangling(integrity.dangling(data), diag, allow_dangling)
     header = _FILE_SCHEMA.search(data[:65536])
     declared = header.group(1).decode("ascii", "replace").strip().upper() if header else ""
     read_as = "IFC2X3" if declared in _READ_AS_IFC2X3 else declared
@@ -245,13 +295,13 @@ def open_model(path, diag):
                     "IFC2X3, IFC4 and IFC4X3; older IFC2x editions are read as IFC2X3)")
         raise ConversionError(f"IfcOpenShell cannot parse it: {why}") from None
     try:
-        parsed = len(f.wrapped_data.entity_names())
+        parsed = set(f.wrapped_data.entity_names())
     except Exception:
         parsed = None
-    expected = len(_ENTITY_LINE.findall(data))
-    if parsed is not None and parsed < expected:
-        raise ConversionError(f"damaged or truncated IFC file: only {parsed} of {expected} entity "
-                              "instances could be read (the DATA section is cut or malformed)")
+    if parsed is not None and len(parsed) < defined:
+        raise ConversionError(f"damaged or truncated IFC file: only {len(parsed)} of "
+                              f"{defined} entity instances could be read (the DATA section "
+                              f"is cut or malformed){_first_unread(data, parsed, f.schema)}")
     if len(f.by_type("IfcProject")) == 0:
         raise ConversionError("no IfcProject: not a complete IFC model (truncated?)")
     bad_prefix = _unknown_prefixes(data)

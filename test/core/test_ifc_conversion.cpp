@@ -147,6 +147,11 @@ TEST(IfcConversion, MissingPythonConverterOrIfc) {
   converted = ConvertIfc(config, dir + "/absent.ifc");
   ASSERT_FALSE(converted.ok());
   EXPECT_TRUE(Contains(converted.error(), "absent.ifc: no such IFC file")) << converted.error();
+
+  converted = ConvertIfc(config, dir);
+  ASSERT_FALSE(converted.ok());
+  EXPECT_TRUE(Contains(converted.error(), "BIM path is a directory, not an IFC file: " + dir))
+      << converted.error();
 }
 
 TEST(IfcConversion, LoadBimByExtension) {

@@ -55,7 +55,12 @@ Result<std::string> ConvertIfc(const IfcConversionConfig& config, const std::str
   const std::string invalid = config.Validate();
   if (!invalid.empty()) return R::Error("IFC conversion: " + invalid);
   std::error_code ec;
-  if (!fs::is_regular_file(ifc_path, ec)) return R::Error(ifc_path + ": no such IFC file");
+  const fs::file_type type = fs::status(ifc_path, ec).type();
+  if (type == fs::file_type::not_found) return R::Error(ifc_path + ": no such IFC file");
+  if (type == fs::file_type::directory) {
+    return R::Error("BIM path is a directory, not an IFC file: " + ifc_path);
+  }
+  // Anything else (unreadable, not a regular file, damaged) the converter names on stderr.
   if (config.python.find('/') != std::string::npos && access(config.python.c_str(), X_OK) != 0) {
     return R::Error("IFC conversion of " + ifc_path + ": Python interpreter '" + config.python +
                     "' not found or not executable (run `make setup` to create the venv, or "
