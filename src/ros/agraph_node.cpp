@@ -6,6 +6,8 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <diagnostic_updater/diagnostic_updater.h>
+
 #include <cstdlib>
 
 #include "agraph_conversions.h"
@@ -126,6 +128,28 @@ int Run(ros::NodeHandle& nh, const AGraphNodeParams& params) {
   cloud_pub.publish(cloud);
   ROS_INFO_STREAM("agraph_node: published (latched) " << cloud.width << " cloud points and\n"
                                                       << agraph::Summarize(graph));
+  // /diagnostics: what was loaded (a failed load never gets here: FATAL and exit).
+  diagnostic_updater::Updater diagnostics;
+  diagnostics.setHardwareID("is_graphs");
+  diagnostics.add("A-Graph", [&](diagnostic_updater::DiagnosticStatusWrapper& d) {
+    using diagnostic_msgs::DiagnosticStatus;
+    if (graph.rooms.empty())
+      d.summary(DiagnosticStatus::WARN, "the A-Graph has no rooms: nothing to match");
+    else
+      d.summaryf(graph.warnings.empty() ? DiagnosticStatus::OK : DiagnosticStatus::WARN,
+                 "'%s': %zu rooms, %zu wall-surfaces, %zu conversion warnings",
+                 graph.building.c_str(), graph.rooms.size(), graph.surfaces.size(),
+                 graph.warnings.size());
+    d.add("file", params.bim_file);
+    d.add("storey", params.storey);
+    d.add("rooms", graph.rooms.size());
+    d.add("wall-surfaces", graph.surfaces.size());
+    d.add("doorways", graph.doorways.size());
+    d.add("conversion warnings", graph.warnings.size());
+    d.add("cloud points", cloud.width);
+  });
+  ros::Timer diagnostics_timer =
+      nh.createTimer(ros::Duration(1.0), [&](const ros::TimerEvent&) { diagnostics.update(); });
   ros::spin();
   return EXIT_SUCCESS;
 }

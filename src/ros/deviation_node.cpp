@@ -12,6 +12,9 @@
 #include "agraph_conversions.h"
 #include "deviation_conversions.h"
 #include "param_helpers.h"
+#include <diagnostic_updater/diagnostic_updater.h>
+
+#include "is_graphs/sgraph/finite_checks.h"
 #include "pose_conversions.h"
 #include "sgraph_conversions.h"
 
@@ -26,6 +29,19 @@ class DeviationNode {
     pub_ = nh.advertise<is_graphs::WallDeviations>("deviations", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("deviations/markers", 1, true);
     sub_ = nh.subscribe("is_graph", 1, &DeviationNode::OnISGraph, this);
+    diagnostics_.setHardwareID("is_graphs");
+    diagnostics_.add("deviations", [this](diagnostic_updater::DiagnosticStatusWrapper& d) {
+      using diagnostic_msgs::DiagnosticStatus;
+      if (last_off_ < 0)
+        d.summary(DiagnosticStatus::OK, "waiting for the iS-Graph (is_graph: not localized yet)");
+      else
+        d.summaryf(DiagnosticStatus::OK, "%d walls off the plan, %d doors closed", last_off_,
+                   last_closed_);
+      d.add("iS-Graphs classified", classified_);
+      d.add("iS-Graphs ignored (non-finite)", rejected_);
+    });
+    diagnostics_timer_ =
+        nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
   }
 
  private:
@@ -44,6 +60,15 @@ class DeviationNode {
     }
     const sgraph::SGraph s_graph = ros_conversions::FromMsg(msg->s_graph);
     const Eigen::Isometry3d bim_T_map = ros_conversions::FromPose(msg->bim_T_map);
+    std::string bad = sgraph::FirstNonFinite(s_graph);
+    if (bad.empty() && !bim_T_map.matrix().allFinite()) bad = "bim_T_map";
+    if (!bad.empty()) {
+      ++rejected_;
+      ROS_WARN_THROTTLE(2.0, "deviation_node: %s: non-finite %s: ignored", sub_.getTopic().c_str(),
+                        bad.c_str());
+      return;
+    }
+    ++classified_;
     const auto walls = merging::ClassifyWalls(a_graph_, s_graph, bim_T_map, config_);
     const auto doors = merging::ClassifyDoorways(a_graph_, s_graph, bim_T_map, config_, doors_);
     is_graphs::WallDeviations out;
@@ -79,8 +104,11 @@ class DeviationNode {
   std::string sha_;
   agraph::AGraph a_graph_;
   int last_off_{-1}, last_closed_{-1};
+  long classified_{0}, rejected_{0};
   ros::Publisher pub_, marker_pub_;
   ros::Subscriber sub_;
+  diagnostic_updater::Updater diagnostics_;
+  ros::Timer diagnostics_timer_;
 };
 
 }  // namespace

@@ -1,13 +1,18 @@
 // matcher_node: matches each S-Graph revision (`s_graph`) against the building's A-Graph
 // (`a_graph`, latched) and publishes `graph_match` (latched) and `graph_match/markers`. Thin:
 // the work is in is_graphs_core (matching::GraphMatcher). Matching runs on a worker thread that
-// always takes the newest S-Graph, so a slow match never piles up callbacks.
+// always takes the newest S-Graph, so a slow match never piles up callbacks. A revision with a
+// non-finite value is ignored (warned); health on /diagnostics.
 #include <is_graphs/AGraph.h>
 #include <is_graphs/GraphMatch.h>
 #include <is_graphs/SGraph.h>
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <diagnostic_updater/diagnostic_updater.h>
+
+#include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <cstdlib>
 #include <mutex>
@@ -17,6 +22,7 @@
 #include "graph_match_conversions.h"
 #include "graph_match_markers.h"
 #include "is_graphs/matching/graph_matcher.h"
+#include "is_graphs/sgraph/finite_checks.h"
 #include "param_helpers.h"
 #include "sgraph_conversions.h"
 #include "sgraph_session.h"
@@ -102,6 +108,10 @@ class MatcherNode {
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("graph_match/markers", 1, true);
     a_sub_ = nh.subscribe("a_graph", 1, &MatcherNode::OnAGraph, this);
     s_sub_ = nh.subscribe("s_graph", 1, &MatcherNode::OnSGraph, this);
+    diagnostics_.setHardwareID("is_graphs");
+    diagnostics_.add("matching", this, &MatcherNode::Diagnose);
+    diagnostics_timer_ =
+        nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
     worker_ = std::thread([this] { Work(); });
   }
 
@@ -122,7 +132,15 @@ class MatcherNode {
   }
 
   void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
+    const std::string bad = sgraph::FirstNonFinite(ros_conversions::FromMsg(*msg));
     std::lock_guard<std::mutex> lock(mutex_);
+    last_s_receipt_ = ros::Time::now();
+    if (!bad.empty()) {
+      ++rejected_;
+      ROS_WARN_THROTTLE(2.0, "matcher_node: %s revision %u: non-finite %s: revision ignored",
+                        s_sub_.getTopic().c_str(), msg->revision, bad.c_str());
+      return;
+    }
     if (pending_s_)
       ROS_DEBUG("matcher_node: S-Graph rev %u skipped (rev %u arrived)", pending_s_->revision,
                 msg->revision);
@@ -153,6 +171,7 @@ class MatcherNode {
       ROS_WARN("matcher_node: A-Graph: %s", w.c_str());
     ROS_INFO("matcher_node: A-Graph '%s' with %zu rooms (%zu usable)", msg.building.c_str(),
              a_graph_.rooms.size(), matcher_.ARooms().size());
+    a_loaded_ = true;
     // A new building: match the last S-Graph again. (Through a copy of the pointer: matching
     // replaces last_s_, which must not free the message being matched.)
     if (const is_graphs::SGraph::ConstPtr last = last_s_) MatchAndPublish(*last);
@@ -175,6 +194,14 @@ class MatcherNode {
         msg.revision, matching::ToString(match.status), match.hypotheses, match.score,
         match.room_pairs.size(), stats.s_rooms, stats.candidates, stats.reused_rooms, stats.seeds,
         stats.milliseconds);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++matches_;
+      last_status_ = matching::ToString(match.status);
+      last_revision_ = msg.revision;
+      last_ms_ = stats.milliseconds;
+      max_ms_ = std::max(max_ms_, stats.milliseconds);
+    }
     is_graphs::GraphMatch out = ros_conversions::ToMsg(match);
     out.header.frame_id = params_.markers.frame_id;
     out.header.stamp = msg.header.stamp.isZero() ? ros::Time::now() : msg.header.stamp;
@@ -184,6 +211,25 @@ class MatcherNode {
       for (auto& m : markers.markers) m.header.stamp = out.header.stamp;
       marker_pub_.publish(markers);
     }
+  }
+
+  void Diagnose(diagnostic_updater::DiagnosticStatusWrapper& d) {
+    const bool has_a = a_loaded_;
+    std::lock_guard<std::mutex> lock(mutex_);
+    using diagnostic_msgs::DiagnosticStatus;
+    if (!has_a)
+      d.summary(DiagnosticStatus::WARN, "waiting for the A-Graph (a_graph)");
+    else if (matches_ == 0)
+      d.summary(DiagnosticStatus::WARN, "waiting for the S-Graph (s_graph)");
+    else
+      d.summaryf(DiagnosticStatus::OK, "S-Graph rev %u: %s", last_revision_, last_status_.c_str());
+    d.add("matches", matches_);
+    d.add("S-Graph revisions ignored (non-finite)", rejected_);
+    d.add("last status", last_status_);
+    d.addf("last match [ms]", "%.1f", last_ms_);
+    d.addf("slowest match [ms]", "%.1f", max_ms_);
+    if (!last_s_receipt_.isZero())
+      d.addf("S-Graph age [s]", "%.2f", (ros::Time::now() - last_s_receipt_).toSec());
   }
 
   MatcherNodeParams params_;
@@ -197,6 +243,15 @@ class MatcherNode {
   is_graphs::AGraph::ConstPtr pending_a_;
   is_graphs::SGraph::ConstPtr pending_s_;
   bool stop_{false};
+  // For /diagnostics (under mutex_; a_loaded_ set by the worker).
+  diagnostic_updater::Updater diagnostics_;
+  ros::Timer diagnostics_timer_;
+  ros::Time last_s_receipt_;
+  long matches_{0}, rejected_{0};
+  std::string last_status_{"none yet"};
+  unsigned last_revision_{0};
+  double last_ms_{0.0}, max_ms_{0.0};
+  std::atomic<bool> a_loaded_{false};
   std::thread worker_;
 };
 

@@ -1,5 +1,7 @@
 #include "sgraph_params.h"
 
+#include <utility>
+
 #include "param_helpers.h"
 
 namespace is_graphs {
@@ -14,6 +16,15 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "map_cloud_period", p.map_cloud_period);
   Read(pnh, "map_cloud_voxel", p.map_cloud_voxel);
   Read(pnh, "tf_rate", p.tf_rate);
+  Read(pnh, "cloud_queue", p.cloud_queue);
+  Read(pnh, "input_timeout", p.input_timeout);
+  Read(pnh, "max_cloud_lag", p.max_cloud_lag);
+  if (p.cloud_queue < 1)
+    throw ros_params::ParamError("parameter '" + pnh.resolveName("cloud_queue") + "' must be >= 1");
+  for (const auto& [name, value] : {std::pair<const char*, double>{"input_timeout", p.input_timeout},
+                                    {"max_cloud_lag", p.max_cloud_lag}})
+    if (!(value > 0.0))
+      throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
   Read(pnh, "marker_layer_spacing", p.markers.layer_spacing);
   std::string layout = ros_conversions::ToString(p.cloud.layout);
   Read(pnh, "cloud_layout", layout);
