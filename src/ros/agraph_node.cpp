@@ -1,12 +1,11 @@
 // agraph_node: loads a building's BIM (an IFC file, converted and cached, or an A-Graph file),
 // builds and solves its A-Graph factor graph once, and publishes latched `a_graph`,
 // `a_graph/markers` and `a_graph/cloud` in the BIM frame. Thin: the work is in is_graphs_core.
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <is_graphs/AGraph.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <visualization_msgs/MarkerArray.h>
-
-#include <diagnostic_updater/diagnostic_updater.h>
 
 #include <cstdlib>
 

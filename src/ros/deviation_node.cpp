@@ -4,6 +4,7 @@
 // planes, and every door and opening present or closed), `deviations/markers` (latched). Params
 // (~, config/deviations.yaml): those of merging::WallDeviationConfig, those of
 // merging::DoorwayDeviationConfig prefixed `doorway_`, `heat_max` (m, the offset drawn full red).
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <is_graphs/ISGraph.h>
 #include <ros/ros.h>
 
@@ -11,10 +12,8 @@
 
 #include "agraph_conversions.h"
 #include "deviation_conversions.h"
-#include "param_helpers.h"
-#include <diagnostic_updater/diagnostic_updater.h>
-
 #include "is_graphs/sgraph/finite_checks.h"
+#include "param_helpers.h"
 #include "pose_conversions.h"
 #include "sgraph_conversions.h"
 
@@ -40,8 +39,8 @@ class DeviationNode {
       d.add("iS-Graphs classified", classified_);
       d.add("iS-Graphs ignored (non-finite)", rejected_);
     });
-    diagnostics_timer_ =
-        nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+    diagnostics_timer_ = nh.createTimer(ros::Duration(1.0),
+                                        [this](const ros::TimerEvent&) { diagnostics_.update(); });
   }
 
  private:

@@ -3,13 +3,12 @@
 // the work is in is_graphs_core (matching::GraphMatcher). Matching runs on a worker thread that
 // always takes the newest S-Graph, so a slow match never piles up callbacks. A revision with a
 // non-finite value is ignored (warned); health on /diagnostics.
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <is_graphs/AGraph.h>
 #include <is_graphs/GraphMatch.h>
 #include <is_graphs/SGraph.h>
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
-
-#include <diagnostic_updater/diagnostic_updater.h>
 
 #include <algorithm>
 #include <atomic>
@@ -110,8 +109,8 @@ class MatcherNode {
     s_sub_ = nh.subscribe("s_graph", 1, &MatcherNode::OnSGraph, this);
     diagnostics_.setHardwareID("is_graphs");
     diagnostics_.add("matching", this, &MatcherNode::Diagnose);
-    diagnostics_timer_ =
-        nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+    diagnostics_timer_ = nh.createTimer(ros::Duration(1.0),
+                                        [this](const ros::TimerEvent&) { diagnostics_.update(); });
     worker_ = std::thread([this] { Work(); });
   }
 

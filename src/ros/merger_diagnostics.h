@@ -24,7 +24,8 @@ struct MergerHealthSnapshot {
 };
 
 /// "localization": OK when LOCALIZED, WARN when NOT_LOCALIZED or DEGRADED, ERROR when LOST.
-void FillLocalization(const MergerHealthSnapshot& s, diagnostic_updater::DiagnosticStatusWrapper& d);
+void FillLocalization(const MergerHealthSnapshot& s,
+                      diagnostic_updater::DiagnosticStatusWrapper& d);
 /// "inputs": the ages the watchdog sees and the input counters; WARN when odometry was skipped
 /// in this period or an input is late, ERROR when one stopped.
 void FillInputs(const MergerHealthSnapshot& s, long skipped_in_period,

@@ -7,541 +7,273 @@
 // Odometry passes the same guard as sgraph_node's (NaN, glitches, lasting steps; config/
 // odometry_guard.yaml); a watchdog over odometry, tf map -> odom and the S-Graph's revisions
 // turns LOCALIZED into DEGRADED and then LOST (docs/faults.md); health on /diagnostics.
+#include "merger_node.h"
+
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <geometry_msgs/TransformStamped.h>
-#include <is_graphs/AGraph.h>
-#include <is_graphs/GraphMatch.h>
 #include <is_graphs/ISGraph.h>
 #include <is_graphs/LocalizationStatus.h>
-#include <is_graphs/SGraph.h>
-#include <nav_msgs/Odometry.h>
-#include <ros/ros.h>
 #include <tf2_eigen/tf2_eigen.h>
-#include <tf2_ros/buffer.h>
-#include <tf2_ros/transform_broadcaster.h>
-#include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include <diagnostic_updater/diagnostic_updater.h>
-
 #include <algorithm>
-#include <atomic>
-#include <condition_variable>
 #include <cstdlib>
-#include <mutex>
-#include <thread>
 
 #include "agraph_conversions.h"
 #include "graph_match_conversions.h"
 #include "is_graphs/geometry/se3.h"
-#include "is_graphs/common/odometry_guard.h"
-#include "is_graphs/merging/input_watchdog.h"
-#include "is_graphs/merging/merge_state.h"
-#include "is_graphs/merging/merger.h"
-#include "is_graphs/merging/pose_covariance.h"
 #include "is_graphs/sgraph/finite_checks.h"
-#include "merger_diagnostics.h"
 #include "merger_markers.h"
-#include "merger_params.h"
 #include "param_helpers.h"
 #include "pose_conversions.h"
-#include "rate_meter.h"
 #include "sgraph_conversions.h"
 #include "sgraph_session.h"
-#include "tf_lookup.h"
 #include "wall_state_conversions.h"
 
 namespace is_graphs {
-namespace {
+namespace ros_merger {
 
-using ros_merger::MergerNodeParams;
+MergerNode::MergerNode(ros::NodeHandle& nh, const MergerNodeParams& params)
+    : params_(params),
+      merger_(params.merger),
+      tf_buffer_(ros::Duration(30.0)),
+      tf_listener_(tf_buffer_),
+      tf_(tf_buffer_),
+      guard_(params.odometry_guard),
+      watchdog_(params.watchdog) {
+  pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("pose_bim", 10);
+  status_pub_ = nh.advertise<is_graphs::LocalizationStatus>("localization_status", 1, true);
+  is_graph_pub_ = nh.advertise<is_graphs::ISGraph>("is_graph", 1, true);
+  marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("is_graph/markers", 1, true);
+  a_sub_ = nh.subscribe("a_graph", 1, &MergerNode::OnAGraph, this);
+  s_sub_ = nh.subscribe("s_graph", 1, &MergerNode::OnSGraph, this);
+  match_sub_ = nh.subscribe("graph_match", 10, &MergerNode::OnMatch, this);
+  odom_sub_ = nh.subscribe("odom", 100, &MergerNode::OnOdometry, this);
+  status_timer_ = nh.createTimer(ros::Duration(1.0 / params_.status_rate),
+                                 [this](const ros::TimerEvent&) { PublishStatus(); });
+  watchdog_timer_ = nh.createTimer(ros::Duration(1.0 / params_.watchdog_rate),
+                                   [this](const ros::TimerEvent&) { OnWatchdogTimer(); });
+  diagnostics_.setHardwareID("is_graphs");
+  diagnostics_.add("localization", this, &MergerNode::DiagnoseLocalization);
+  diagnostics_.add("inputs", this, &MergerNode::DiagnoseInputs);
+  diagnostics_timer_ =
+      nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+  PublishStatus();
+  worker_ = std::thread([this] { Work(); });
+}
 
-class MergerNode {
- public:
-  MergerNode(ros::NodeHandle& nh, const MergerNodeParams& params)
-      : params_(params),
-        merger_(params.merger),
-        tf_buffer_(ros::Duration(30.0)),
-        tf_listener_(tf_buffer_),
-        tf_(tf_buffer_),
-        guard_(params.odometry_guard),
-        watchdog_(params.watchdog) {
-    pose_pub_ = nh.advertise<geometry_msgs::PoseWithCovarianceStamped>("pose_bim", 10);
-    status_pub_ = nh.advertise<is_graphs::LocalizationStatus>("localization_status", 1, true);
-    is_graph_pub_ = nh.advertise<is_graphs::ISGraph>("is_graph", 1, true);
-    marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("is_graph/markers", 1, true);
-    a_sub_ = nh.subscribe("a_graph", 1, &MergerNode::OnAGraph, this);
-    s_sub_ = nh.subscribe("s_graph", 1, &MergerNode::OnSGraph, this);
-    match_sub_ = nh.subscribe("graph_match", 10, &MergerNode::OnMatch, this);
-    odom_sub_ = nh.subscribe("odom", 100, &MergerNode::OnOdometry, this);
-    status_timer_ = nh.createTimer(ros::Duration(1.0 / params_.status_rate),
-                                   [this](const ros::TimerEvent&) { PublishStatus(); });
-    watchdog_timer_ = nh.createTimer(ros::Duration(1.0 / params_.watchdog_rate),
-                                     [this](const ros::TimerEvent&) { OnWatchdogTimer(); });
-    diagnostics_.setHardwareID("is_graphs");
-    diagnostics_.add("localization", this, &MergerNode::DiagnoseLocalization);
-    diagnostics_.add("inputs", this, &MergerNode::DiagnoseInputs);
-    diagnostics_timer_ = nh.createTimer(ros::Duration(1.0),
-                                        [this](const ros::TimerEvent&) { diagnostics_.update(); });
-    PublishStatus();
-    worker_ = std::thread([this] { Work(); });
+MergerNode::~MergerNode() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
   }
+  wake_.notify_all();
+  worker_.join();
+}
 
-  ~MergerNode() {
+void MergerNode::OnAGraph(const is_graphs::AGraph::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  pending_a_ = msg;
+  wake_.notify_all();
+}
+
+void MergerNode::OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
+  const std::string bad = sgraph::FirstNonFinite(ros_conversions::FromMsg(*msg));
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!bad.empty()) {
+    ++sgraph_rejected_;
+    ROS_WARN_THROTTLE(2.0, "merger_node: %s revision %u: non-finite %s: revision ignored",
+                      s_sub_.getTopic().c_str(), msg->revision, bad.c_str());
+    return;
+  }
+  ++sgraph_revisions_;
+  watchdog_.OnSGraph(state_.distance_walked());
+  const bool new_session = latest_s_ && ros_sgraph::IsNewSession(*latest_s_, *msg);
+  if (new_session) {
+    ROS_WARN(
+        "merger_node: a new S-Graph (revision %u after %u, %zu keyframes after %zu: "
+        "sgraph_node restarted or lost track): merge reset, matching again",
+        msg->revision, latest_s_->revision, msg->keyframes.size(), latest_s_->keyframes.size());
+    const bool was_localized = localized_ || state_.state() == merging::LocalizationState::kLost;
+    ResetLocked("the S-Graph restarted");
+    // A robot that was localized and no longer is, is LOST (not "not yet localized").
+    if (was_localized) state_.SetLost("the S-Graph restarted (track lost): matching again");
+    session_revision_ = msg->revision;
+  }
+  latest_s_ = msg;
+  new_s_ = true;
+  wake_.notify_all();
+  lock.unlock();
+  if (new_session) PublishStatus();  // the change at once, not at the next status tick
+}
+
+void MergerNode::OnMatch(const is_graphs::GraphMatch::ConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++matches_;
+  // A pending UNIQUE match is not replaced by a later non-UNIQUE one.
+  if (pending_match_ && pending_match_->status == is_graphs::GraphMatch::UNIQUE &&
+      msg->status != is_graphs::GraphMatch::UNIQUE)
+    return;
+  pending_match_ = msg;
+  pending_match_since_ = ros::WallTime::now();
+  wake_.notify_all();
+}
+
+void MergerNode::Work() {
+  for (;;) {
+    is_graphs::AGraph::ConstPtr a_msg;
+    is_graphs::GraphMatch::ConstPtr match_msg;
+    is_graphs::SGraph::ConstPtr s_msg;
+    bool reset = false, solve_s = false;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait_for(lock, std::chrono::milliseconds(200));
+      if (stop_) return;
+      a_msg.swap(pending_a_);
+      reset = reset_merger_;
+      reset_merger_ = false;
+      s_msg = latest_s_;
+      if (pending_match_) {
+        const unsigned seen = latest_s_ ? latest_s_->revision : 0;
+        if (pending_match_->s_graph_revision < session_revision_) {
+          ROS_WARN(
+              "merger_node: graph_match for S-Graph revision %u, from before the S-Graph "
+              "restarted (revision %u): ignored",
+              pending_match_->s_graph_revision, session_revision_);
+          pending_match_.reset();
+        } else if (latest_s_ && pending_match_->s_graph_revision <= seen) {
+          match_msg.swap(pending_match_);
+        } else if ((ros::WallTime::now() - pending_match_since_).toSec() > params_.match_wait) {
+          ROS_WARN(
+              "merger_node: graph_match for S-Graph revision %u, newer than any seen (%u): "
+              "ignored",
+              pending_match_->s_graph_revision, seen);
+          pending_match_.reset();
+        }
+      }
+      solve_s = new_s_ && !match_msg;
+      if (!match_msg) new_s_ = false;
+    }
+    if (reset) merger_.Reset();
+    if (a_msg) SetAGraph(a_msg);
+    if (!s_msg || !merger_.HasAGraph()) continue;
+    if (match_msg) {
+      last_match_ = match_msg;
+      const matching::GraphMatch match = ros_conversions::FromMsg(*match_msg);
+      if (match.a_graph_sha256 != merger_.a_graph_sha256()) {
+        ROS_WARN_THROTTLE(5.0,
+                          "merger_node: graph_match for an A-Graph not loaded here "
+                          "(sha256 %s, have %s): ignored",
+                          match.a_graph_sha256.c_str(), merger_.a_graph_sha256().c_str());
+        continue;
+      }
+      Apply(merger_.OnMatch(match, ros_conversions::FromMsg(*s_msg)), *s_msg);
+    } else if (solve_s && merger_.merged()) {
+      Apply(merger_.OnSGraph(ros_conversions::FromMsg(*s_msg)), *s_msg);
+    }
+  }
+}
+
+void MergerNode::SetAGraph(const is_graphs::AGraph::ConstPtr& msg) {
+  if (merger_.HasAGraph() && msg->source_sha256 == merger_.a_graph_sha256()) return;  // re-latched
+  const bool had = merger_.HasAGraph();
+  const std::string error = merger_.SetAGraph(ros_conversions::FromMsg(*msg));
+  a_msg_ = msg;
+  if (had) {
+    ROS_WARN("merger_node: a new A-Graph ('%s', sha256 %s): the building changed, merge reset",
+             msg->building.c_str(), msg->source_sha256.c_str());
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    worker_.join();
-  }
-
- private:
-  // --- callbacks: store the newest input and wake the worker ---
-  void OnAGraph(const is_graphs::AGraph::ConstPtr& msg) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    pending_a_ = msg;
-    wake_.notify_all();
-  }
-
-  void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
-    const std::string bad = sgraph::FirstNonFinite(ros_conversions::FromMsg(*msg));
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (!bad.empty()) {
-      ++sgraph_rejected_;
-      ROS_WARN_THROTTLE(2.0, "merger_node: %s revision %u: non-finite %s: revision ignored",
-                        s_sub_.getTopic().c_str(), msg->revision, bad.c_str());
-      return;
-    }
-    ++sgraph_revisions_;
-    watchdog_.OnSGraph(state_.distance_walked());
-    const bool new_session = latest_s_ && ros_sgraph::IsNewSession(*latest_s_, *msg);
-    if (new_session) {
-      ROS_WARN(
-          "merger_node: a new S-Graph (revision %u after %u, %zu keyframes after %zu: "
-          "sgraph_node restarted or lost track): merge reset, matching again",
-          msg->revision, latest_s_->revision, msg->keyframes.size(), latest_s_->keyframes.size());
-      const bool was_localized = localized_ || state_.state() == merging::LocalizationState::kLost;
-      ResetLocked("the S-Graph restarted");
-      // A robot that was localized and no longer is, is LOST (not "not yet localized").
-      if (was_localized) state_.SetLost("the S-Graph restarted (track lost): matching again");
-      session_revision_ = msg->revision;
-    }
-    latest_s_ = msg;
-    new_s_ = true;
-    wake_.notify_all();
-    lock.unlock();
-    if (new_session) PublishStatus();  // the change at once, not at the next status tick
-  }
-
-  void OnMatch(const is_graphs::GraphMatch::ConstPtr& msg) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++matches_;
-    // A pending UNIQUE match is not replaced by a later non-UNIQUE one.
-    if (pending_match_ && pending_match_->status == is_graphs::GraphMatch::UNIQUE &&
-        msg->status != is_graphs::GraphMatch::UNIQUE)
-      return;
-    pending_match_ = msg;
-    pending_match_since_ = ros::WallTime::now();
-    wake_.notify_all();
-  }
-
-  void OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
-    odometry_rate_.Tick();
-    const ros::Time stamp = msg->header.stamp;
-    const Eigen::Isometry3d reading = ros_conversions::FromPose(msg->pose.pose);
-    std::unique_lock<std::mutex> lock(mutex_);
-    ++odometry_received_;
-    const common::OdometryGuard::Result checked = guard_.Check(stamp.toSec(), reading);
-    if (!checked.usable()) {
-      ++odometry_skipped_;
-      last_odometry_problem_ = std::string(common::ToString(checked.verdict)) + ": " +
-                               checked.message;
-      ROS_WARN_THROTTLE(2.0, "merger_node: %s: %s (%s): skipped, no pose extrapolated through it",
-                        odom_sub_.getTopic().c_str(), common::ToString(checked.verdict),
-                        checked.message.c_str());
-      return;
-    }
-    if (checked.verdict == common::OdometryGuard::Verdict::kBridged) {
-      ++odometry_bridged_;
-      ROS_WARN("merger_node: %s: %s", odom_sub_.getTopic().c_str(), checked.message.c_str());
-    }
-    const bool went_back = checked.verdict == common::OdometryGuard::Verdict::kTimeBack;
-    if (went_back) {
-      ROS_WARN("merger_node: odometry went back in time by %.1f s (bag restarted?): merge reset",
-               (last_odom_stamp_ - stamp).toSec());
-      ResetLocked("time went back");
-      tf_buffer_.clear();
-      latest_s_.reset();
-      session_revision_ = 0;
-    }
-    last_odom_stamp_ = stamp;
-    // odom_T_base: the reading as the S-Graph uses it (the guard's bridge of a lasting step).
-    const Eigen::Isometry3d odom_T_base = checked.odom_T_base;
-    state_.AddOdometry(stamp.toSec(), odom_T_base.translation());
-    watchdog_.OnOdometry(stamp.toSec(), state_.distance_walked());
-    if (!localized_) {
-      lock.unlock();
-      if (went_back) PublishStatus();  // the change at once, not at the next status tick
-      return;
-    }
-    const merging::OdometryAnchor anchor = anchor_;
-    const Eigen::Isometry3d bim_T_map = bim_T_map_;
-    const Eigen::Matrix3d covariance = covariance_;
-    const bool degraded = state_.state() == merging::LocalizationState::kDegraded;
-    const double since_sgraph = watchdog_.Check(stamp.toSec()).distance_since_sgraph;
-    lock.unlock();
-
-    // The pose: the merged revision's newest keyframe and the odometry since, calibrated (no tf
-    // needed).
-    const Eigen::Isometry3d bim_T_base = anchor.Pose(odom_T_base);
-    if (!bim_T_base.matrix().allFinite()) {  // the last line: never a NaN pose
-      ++nonfinite_poses_;
-      ROS_ERROR_THROTTLE(2.0,
-                         "merger_node: a non-finite pose from odometry at %.3f s and the merge: "
-                         "not published",
-                         stamp.toSec());
-      return;
-    }
-    geometry_msgs::PoseWithCovarianceStamped pose;
-    pose.header.stamp = stamp;
-    pose.header.frame_id = params_.bim_frame;
-    pose.pose.pose = ros_conversions::ToPose(bim_T_base);
-    Eigen::Matrix<double, 6, 6> pose_covariance = merging::RobotPoseCovariance(
-        covariance, bim_T_map, bim_T_map.inverse() * bim_T_base.translation(), params_.merger);
-    if (degraded)
-      pose_covariance = merging::GrowWithOdometry(pose_covariance, since_sgraph, params_.watchdog);
-    ros_conversions::ToArray(pose_covariance, pose.pose.covariance);
-    pose_pub_.publish(pose);
-    ++poses_;
-    // tf bim -> map, such that bim -> map -> odom (the S-Graph's newest) -> base_link is that pose;
-    // map -> odom and odom -> base_link are both in the readings' frame (sgraph_node's map -> odom
-    // carries the guard's bridge).
-    if (stamp <= last_tf_stamp_) return;  // tf2 rejects repeated stamps
-    auto map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, stamp);
-    if (!map_T_odom.ok())
-      map_T_odom = tf_.Lookup(params_.map_frame, params_.odom_frame, ros::Time(0));
-    if (!map_T_odom.ok()) {  // a tf gap: the pose holds, the tf waits
-      ROS_WARN_THROTTLE(2.0, "merger_node: %s: tf %s -> %s not published",
-                        map_T_odom.error().c_str(), params_.bim_frame.c_str(),
-                        params_.map_frame.c_str());
-      return;
-    }
-    last_tf_stamp_ = stamp;
-    geometry_msgs::TransformStamped t =
-        tf2::eigenToTransform(bim_T_base * (map_T_odom.value() * reading).inverse());
-    t.header.stamp = stamp;
-    t.header.frame_id = params_.bim_frame;
-    t.child_frame_id = params_.map_frame;
-    tf_broadcaster_.sendTransform(t);
-  }
-
-  // --- watchdog: the inputs' ages against the clock ---
-  void OnWatchdogTimer() {
-    const auto heartbeat = tf_.LatestStamp(params_.map_frame, params_.odom_frame);
-    const ros::Time now = ros::Time::now();
-    bool changed = false;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (heartbeat.ok()) watchdog_.OnMapToOdom(heartbeat.value().toSec());
-      changed = ApplyWatchdogLocked(watchdog_.Check(now.toSec()));
-    }
-    if (changed) PublishStatus();
-  }
-
-  // LOCALIZED -> DEGRADED -> LOST as inputs fall behind (never back to LOCALIZED on odometry
-  // alone: a merge of a new S-Graph revision does that, Apply). True when the state changed.
-  bool ApplyWatchdogLocked(const merging::InputWatchdog::Report& report) {
-    last_report_ = report;
-    using Health = merging::InputWatchdog::Health;
-    if (!localized_ || report.health == Health::kFresh) return false;
-    if (report.health == Health::kStopped) {
-      ROS_WARN("merger_node: LOST: %s; matching again", report.message.c_str());
       localized_ = false;
-      reset_merger_ = true;
-      state_.SetLost("lost: " + report.message + "; matching again");
-      wake_.notify_all();
-      return true;
+      state_.Reset("the building changed; waiting for a unique match");
+      status_dirty_ = true;
     }
-    const bool was_localized = state_.localized();
-    state_.SetDegraded("degraded: " + report.message);
-    if (was_localized)
-      ROS_WARN("merger_node: DEGRADED: %s; the pose goes on with odometry alone",
-               report.message.c_str());
-    return was_localized;
+    PublishStatus();  // the change at once, not at the next status tick
   }
+  if (!error.empty())
+    ROS_ERROR("merger_node: unusable A-Graph: %s", error.c_str());
+  else
+    ROS_INFO("merger_node: A-Graph '%s' with %zu rooms", msg->building.c_str(), msg->rooms.size());
+}
 
-  // --- state (mutex_ held) ---
-  void ResetLocked(const std::string& why) {
-    reset_merger_ = true;
-    localized_ = false;
-    state_.Reset("reset: " + why + "; waiting for a unique match");
-    status_dirty_ = true;
+void MergerNode::Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg) {
+  using merging::MergeEvent;
+  const auto& sol = out.solution;
+  const Eigen::Vector3d xi = geometry::ToXYYaw(out.bim_T_map);
+  switch (out.event) {
+    case MergeEvent::kNone:
+      return;
+    case MergeEvent::kRejected:
+      ROS_WARN("merger_node: %s", out.message.c_str());
+      break;
+    case MergeEvent::kLost:
+      ROS_WARN("merger_node: LOST: %s", out.message.c_str());
+      break;
+    case MergeEvent::kLocalized:
+      ROS_INFO(
+          "merger_node: LOCALIZED at S-Graph rev %u: B_x_M = (%.3f m, %.3f m, %.2f deg), "
+          "%s, %d iterations, %.1f ms",
+          s_msg.revision, xi.x(), xi.y(), xi.z() * 180 / M_PI, out.message.c_str(), sol.iterations,
+          sol.seconds * 1e3);
+      break;
+    case MergeEvent::kUpdated:
+      ROS_DEBUG("merger_node: rev %u: B_x_M = (%.3f, %.3f, %.2f deg), %s, %.1f ms", s_msg.revision,
+                xi.x(), xi.y(), xi.z() * 180 / M_PI, out.message.c_str(), sol.seconds * 1e3);
+      break;
   }
-
-  void PublishStatus() {
-    is_graphs::LocalizationStatus msg;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      msg.header.stamp = ros::Time::now();
-      msg.header.frame_id = params_.bim_frame;
-      msg.state = static_cast<uint8_t>(state_.state());
-      if (state_.has_pose())
-        msg.localized_since = ros::Time(std::max(state_.localized_since(), 0.0));
-      msg.seconds_to_localize = state_.seconds_to_localize();
-      msg.distance_to_localize = state_.distance_to_localize();
-      msg.message = state_.message();
-      if (state_.has_pose()) {
-        Eigen::Matrix<double, 6, 6> covariance = merging::RobotPoseCovariance(
-            covariance_, bim_T_map_, Eigen::Vector3d::Zero(), params_.merger);
-        if (state_.state() == merging::LocalizationState::kDegraded)
-          covariance = merging::GrowWithOdometry(covariance, last_report_.distance_since_sgraph,
-                                                 params_.watchdog);
-        ros_conversions::ToArray(covariance, msg.covariance);
-      }
-      status_dirty_ = false;
-    }
-    status_pub_.publish(msg);
-  }
-
-  // --- /diagnostics ---
-  ros_merger::MergerHealthSnapshot Snapshot() {
-    ros_merger::MergerHealthSnapshot h;
-    h.odometry_rate = odometry_rate_.Rate(ros::Time::now());
+  for (const std::string& warning : out.warnings)
+    ROS_WARN_THROTTLE(10.0, "merger_node: %s", warning.c_str());
+  bool publish_status = false;
+  {
     std::lock_guard<std::mutex> lock(mutex_);
-    h.state = state_.state();
-    h.message = state_.message();
-    h.armed = localized_;
-    h.watchdog = last_report_;
-    h.odometry_received = odometry_received_;
-    h.odometry_skipped = odometry_skipped_;
-    h.odometry_bridged = odometry_bridged_;
-    h.last_odometry_problem = last_odometry_problem_;
-    h.sgraph_revisions = sgraph_revisions_;
-    h.sgraph_rejected = sgraph_rejected_;
-    h.matches = matches_;
-    h.poses = poses_;
-    h.nonfinite_poses = nonfinite_poses_;
-    h.last_merge_ms = last_merge_ms_;
-    h.max_merge_ms = max_merge_ms_;
-    return h;
-  }
-
-  void DiagnoseLocalization(diagnostic_updater::DiagnosticStatusWrapper& d) {
-    snapshot_ = Snapshot();
-    ros_merger::FillLocalization(snapshot_, d);
-  }
-
-  void DiagnoseInputs(diagnostic_updater::DiagnosticStatusWrapper& d) {
-    // Runs right after DiagnoseLocalization (the order added): the same snapshot.
-    ros_merger::FillInputs(snapshot_, snapshot_.odometry_skipped - skipped_reported_, d);
-    skipped_reported_ = snapshot_.odometry_skipped;
-  }
-
-  // --- worker ---
-  void Work() {
-    for (;;) {
-      is_graphs::AGraph::ConstPtr a_msg;
-      is_graphs::GraphMatch::ConstPtr match_msg;
-      is_graphs::SGraph::ConstPtr s_msg;
-      bool reset = false, solve_s = false;
-      {
-        std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait_for(lock, std::chrono::milliseconds(200));
-        if (stop_) return;
-        a_msg.swap(pending_a_);
-        reset = reset_merger_;
-        reset_merger_ = false;
-        s_msg = latest_s_;
-        if (pending_match_) {
-          const unsigned seen = latest_s_ ? latest_s_->revision : 0;
-          if (pending_match_->s_graph_revision < session_revision_) {
-            ROS_WARN(
-                "merger_node: graph_match for S-Graph revision %u, from before the S-Graph "
-                "restarted (revision %u): ignored",
-                pending_match_->s_graph_revision, session_revision_);
-            pending_match_.reset();
-          } else if (latest_s_ && pending_match_->s_graph_revision <= seen) {
-            match_msg.swap(pending_match_);
-          } else if ((ros::WallTime::now() - pending_match_since_).toSec() > params_.match_wait) {
-            ROS_WARN(
-                "merger_node: graph_match for S-Graph revision %u, newer than any seen (%u): "
-                "ignored",
-                pending_match_->s_graph_revision, seen);
-            pending_match_.reset();
-          }
-        }
-        solve_s = new_s_ && !match_msg;
-        if (!match_msg) new_s_ = false;
-      }
-      if (reset) merger_.Reset();
-      if (a_msg) SetAGraph(a_msg);
-      if (!s_msg || !merger_.HasAGraph()) continue;
-      if (match_msg) {
-        last_match_ = match_msg;
-        const matching::GraphMatch match = ros_conversions::FromMsg(*match_msg);
-        if (match.a_graph_sha256 != merger_.a_graph_sha256()) {
-          ROS_WARN_THROTTLE(5.0,
-                            "merger_node: graph_match for an A-Graph not loaded here "
-                            "(sha256 %s, have %s): ignored",
-                            match.a_graph_sha256.c_str(), merger_.a_graph_sha256().c_str());
-          continue;
-        }
-        Apply(merger_.OnMatch(match, ros_conversions::FromMsg(*s_msg)), *s_msg);
-      } else if (solve_s && merger_.merged()) {
-        Apply(merger_.OnSGraph(ros_conversions::FromMsg(*s_msg)), *s_msg);
-      }
-    }
-  }
-
-  void SetAGraph(const is_graphs::AGraph::ConstPtr& msg) {
-    if (merger_.HasAGraph() && msg->source_sha256 == merger_.a_graph_sha256())
-      return;  // re-latched
-    const bool had = merger_.HasAGraph();
-    const std::string error = merger_.SetAGraph(ros_conversions::FromMsg(*msg));
-    a_msg_ = msg;
-    if (had) {
-      ROS_WARN("merger_node: a new A-Graph ('%s', sha256 %s): the building changed, merge reset",
-               msg->building.c_str(), msg->source_sha256.c_str());
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        localized_ = false;
-        state_.Reset("the building changed; waiting for a unique match");
-        status_dirty_ = true;
-      }
-      PublishStatus();  // the change at once, not at the next status tick
-    }
-    if (!error.empty())
-      ROS_ERROR("merger_node: unusable A-Graph: %s", error.c_str());
-    else
-      ROS_INFO("merger_node: A-Graph '%s' with %zu rooms", msg->building.c_str(),
-               msg->rooms.size());
-  }
-
-  void Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg) {
-    using merging::MergeEvent;
-    const auto& sol = out.solution;
-    const Eigen::Vector3d xi = geometry::ToXYYaw(out.bim_T_map);
-    switch (out.event) {
-      case MergeEvent::kNone:
-        return;
-      case MergeEvent::kRejected:
-        ROS_WARN("merger_node: %s", out.message.c_str());
-        break;
-      case MergeEvent::kLost:
-        ROS_WARN("merger_node: LOST: %s", out.message.c_str());
-        break;
-      case MergeEvent::kLocalized:
-        ROS_INFO(
-            "merger_node: LOCALIZED at S-Graph rev %u: B_x_M = (%.3f m, %.3f m, %.2f deg), "
-            "%s, %d iterations, %.1f ms",
-            s_msg.revision, xi.x(), xi.y(), xi.z() * 180 / M_PI, out.message.c_str(),
-            sol.iterations, sol.seconds * 1e3);
-        break;
-      case MergeEvent::kUpdated:
-        ROS_DEBUG("merger_node: rev %u: B_x_M = (%.3f, %.3f, %.2f deg), %s, %.1f ms",
-                  s_msg.revision, xi.x(), xi.y(), xi.z() * 180 / M_PI, out.message.c_str(),
-                  sol.seconds * 1e3);
-        break;
-    }
-    for (const std::string& warning : out.warnings)
-      ROS_WARN_THROTTLE(10.0, "merger_node: %s", warning.c_str());
-    bool publish_status = false;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (reset_merger_) return;  // reset meanwhile: this result is stale
-      const double stamp = s_msg.header.stamp.toSec();
-      last_merge_ms_ = sol.seconds * 1e3;
-      max_merge_ms_ = std::max(max_merge_ms_, last_merge_ms_);
-      if (out.merged) {
-        if (!localized_) watchdog_.Arm(ros::Time::now().toSec(), state_.distance_walked());
-        localized_ = true;
-        bim_T_map_ = out.bim_T_map;
-        anchor_ = out.anchor;
-        covariance_ = out.covariance;
-        // Back from DEGRADED only while every input is fresh (a new revision merged).
-        const bool fresh = watchdog_.Check(ros::Time::now().toSec()).health ==
-                           merging::InputWatchdog::Health::kFresh;
-        if ((!state_.localized() && (fresh || !state_.has_pose())) ||
-            out.event == MergeEvent::kLocalized) {
-          state_.SetLocalized(stamp, "localized: " + out.message);
-          publish_status = true;
-        }
-      } else if (out.event == MergeEvent::kLost) {
-        localized_ = false;
-        state_.SetLost("lost: " + out.message + "; matching again");
+    if (reset_merger_) return;  // reset meanwhile: this result is stale
+    const double stamp = s_msg.header.stamp.toSec();
+    last_merge_ms_ = sol.seconds * 1e3;
+    max_merge_ms_ = std::max(max_merge_ms_, last_merge_ms_);
+    if (out.merged) {
+      if (!localized_) watchdog_.Arm(ros::Time::now().toSec(), state_.distance_walked());
+      localized_ = true;
+      bim_T_map_ = out.bim_T_map;
+      anchor_ = out.anchor;
+      covariance_ = out.covariance;
+      // Back from DEGRADED only while every input is fresh (a new revision merged).
+      const bool fresh = watchdog_.Check(ros::Time::now().toSec()).health ==
+                         merging::InputWatchdog::Health::kFresh;
+      if ((!state_.localized() && (fresh || !state_.has_pose())) ||
+          out.event == MergeEvent::kLocalized) {
+        state_.SetLocalized(stamp, "localized: " + out.message);
         publish_status = true;
       }
-      publish_status = publish_status || status_dirty_;
+    } else if (out.event == MergeEvent::kLost) {
+      localized_ = false;
+      state_.SetLost("lost: " + out.message + "; matching again");
+      publish_status = true;
     }
-    if (publish_status) PublishStatus();
-    if (!out.merged) return;
-    if (is_graph_pub_.getNumSubscribers() > 0 && a_msg_) {
-      is_graphs::ISGraph msg;
-      msg.header.stamp = s_msg.header.stamp;
-      msg.header.frame_id = params_.bim_frame;
-      msg.a_graph = *a_msg_;
-      msg.s_graph = s_msg;
-      if (last_match_) msg.match = *last_match_;
-      msg.bim_T_map = ros_conversions::ToPose(out.bim_T_map);
-      msg.wall_states = ros_conversions::ToMsg(sol.walls);
-      is_graph_pub_.publish(msg);
-    }
-    if (marker_pub_.getNumSubscribers() > 0) {
-      auto markers =
-          ros_markers::BuildMergerMarkers(merger_.a_graph(), ros_conversions::FromMsg(s_msg),
-                                          merger_.pairs(), out.bim_T_map, params_.markers);
-      for (auto& m : markers.markers) m.header.stamp = s_msg.header.stamp;
-      marker_pub_.publish(markers);
-    }
+    publish_status = publish_status || status_dirty_;
   }
+  if (publish_status) PublishStatus();
+  if (!out.merged) return;
+  if (is_graph_pub_.getNumSubscribers() > 0 && a_msg_) {
+    is_graphs::ISGraph msg;
+    msg.header.stamp = s_msg.header.stamp;
+    msg.header.frame_id = params_.bim_frame;
+    msg.a_graph = *a_msg_;
+    msg.s_graph = s_msg;
+    if (last_match_) msg.match = *last_match_;
+    msg.bim_T_map = ros_conversions::ToPose(out.bim_T_map);
+    msg.wall_states = ros_conversions::ToMsg(sol.walls);
+    is_graph_pub_.publish(msg);
+  }
+  if (marker_pub_.getNumSubscribers() > 0) {
+    auto markers =
+        ros_markers::BuildMergerMarkers(merger_.a_graph(), ros_conversions::FromMsg(s_msg),
+                                        merger_.pairs(), out.bim_T_map, params_.markers);
+    for (auto& m : markers.markers) m.header.stamp = s_msg.header.stamp;
+    marker_pub_.publish(markers);
+  }
+}
 
-  MergerNodeParams params_;
-  merging::Merger merger_;                      // the worker's
-  is_graphs::AGraph::ConstPtr a_msg_;           // the worker's
-  is_graphs::GraphMatch::ConstPtr last_match_;  // the worker's
-  tf2_ros::Buffer tf_buffer_;
-  tf2_ros::TransformListener tf_listener_;
-  ros_tf::TfLookup tf_;
-  tf2_ros::TransformBroadcaster tf_broadcaster_;
-  ros::Publisher pose_pub_, status_pub_, is_graph_pub_, marker_pub_;
-  ros::Subscriber a_sub_, s_sub_, match_sub_, odom_sub_;
-  ros::Timer status_timer_, watchdog_timer_, diagnostics_timer_;
-  diagnostic_updater::Updater diagnostics_;
-  ros_merger::MergerHealthSnapshot snapshot_;  // the diagnostics' (timer callbacks)
-  long skipped_reported_{0};                   // the diagnostics'
-  ros_diagnostics::RateMeter odometry_rate_;
-  std::atomic<long> poses_{0}, nonfinite_poses_{0};
-
-  std::mutex mutex_;  // guards everything below
-  std::condition_variable wake_;
-  is_graphs::AGraph::ConstPtr pending_a_;
-  is_graphs::SGraph::ConstPtr latest_s_;
-  bool new_s_{false};
-  is_graphs::GraphMatch::ConstPtr pending_match_;
-  ros::WallTime pending_match_since_;
-  bool reset_merger_{false};
-  unsigned session_revision_{0};  // the first S-Graph revision of the current S-Graph
-  bool stop_{false};
-  bool localized_{false};
-  bool status_dirty_{false};
-  Eigen::Isometry3d bim_T_map_{Eigen::Isometry3d::Identity()};
-  merging::OdometryAnchor anchor_;  // the pose: anchor_.Pose(odom_T_base)
-  Eigen::Matrix3d covariance_{Eigen::Matrix3d::Identity()};
-  merging::MergeState state_;
-  common::OdometryGuard guard_;
-  merging::InputWatchdog watchdog_;
-  merging::InputWatchdog::Report last_report_;
-  long odometry_received_{0}, odometry_skipped_{0}, odometry_bridged_{0};
-  std::string last_odometry_problem_;
-  long sgraph_revisions_{0}, sgraph_rejected_{0}, matches_{0};
-  double last_merge_ms_{0.0}, max_merge_ms_{0.0};
-  ros::Time last_odom_stamp_;
-  ros::Time last_tf_stamp_;
-  std::thread worker_;
-};
-
-}  // namespace
+}  // namespace ros_merger
 }  // namespace is_graphs
 
 int main(int argc, char** argv) {
@@ -550,7 +282,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle pnh("~");
   try {
     const auto params = is_graphs::ros_merger::ReadParams(pnh);
-    is_graphs::MergerNode node(nh, params);
+    is_graphs::ros_merger::MergerNode node(nh, params);
     ros::AsyncSpinner spinner(2);  // odometry keeps flowing while graphs are converted
     spinner.start();
     ros::waitForShutdown();

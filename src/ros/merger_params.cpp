@@ -62,8 +62,8 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "degraded_sigma_per_m", w.degraded_sigma_per_m);
   Read(pnh, "degraded_yaw_sigma_deg_per_m", w.degraded_yaw_sigma_deg_per_m);
   if (const std::string e = w.Validate(); !e.empty())
-    throw ros_params::ParamError("parameter '" + pnh.resolveName(e.substr(0, e.find(' '))) +
-                                 "'" + e.substr(e.find(' ')));
+    throw ros_params::ParamError("parameter '" + pnh.resolveName(e.substr(0, e.find(' '))) + "'" +
+                                 e.substr(e.find(' ')));
   ros_params::ReadOdometryGuard(pnh, p.odometry_guard);
   p.markers.frame_id = p.bim_frame;
   for (const auto& [name, value] :
@@ -72,10 +72,9 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
         {"odom_frame", &p.odom_frame}})
     if (value->empty())
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must not be empty");
-  for (const auto& [name, value] :
-       {std::pair<const char*, double>{"match_wait", p.match_wait},
-        {"status_rate", p.status_rate},
-        {"watchdog_rate", p.watchdog_rate}})
+  for (const auto& [name, value] : {std::pair<const char*, double>{"match_wait", p.match_wait},
+                                    {"status_rate", p.status_rate},
+                                    {"watchdog_rate", p.watchdog_rate}})
     if (!(value > 0.0))
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
   const std::string error = c.Validate();

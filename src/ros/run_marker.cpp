@@ -38,8 +38,9 @@ RunMarker::RunMarker(const std::string& name, const std::string& run_id) : run_i
 std::string RunMarker::Write(const std::string& summary) const {
   std::error_code ec;
   std::filesystem::create_directories(std::filesystem::path(path_).parent_path(), ec);
-  if (ec) return "cannot create " + std::filesystem::path(path_).parent_path().string() + ": " +
-                 ec.message();
+  if (ec)
+    return "cannot create " + std::filesystem::path(path_).parent_path().string() + ": " +
+           ec.message();
   const std::string tmp = path_ + ".tmp";
   {
     std::ofstream out(tmp);

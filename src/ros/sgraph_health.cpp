@@ -102,8 +102,7 @@ void SGraphHealth::FillInputs(const ros::Time& now, double timeout,
   d.add("odometry steps bridged", bridged_);
   d.add("last odometry problem", last_odometry_problem_);
   if (!last_cloud_.isZero()) d.addf("cloud age [s]", "%.2f", (now - last_cloud_).toSec());
-  if (!last_odometry_.isZero())
-    d.addf("odometry age [s]", "%.2f", (now - last_odometry_).toSec());
+  if (!last_odometry_.isZero()) d.addf("odometry age [s]", "%.2f", (now - last_odometry_).toSec());
 }
 
 void SGraphHealth::FillProcessing(double max_lag, diagnostic_updater::DiagnosticStatusWrapper& d) {

@@ -7,6 +7,7 @@
 // Odometry passes the builder's guard (NaN, glitches, lasting steps bridged); clouds missing
 // (stamp gaps: a full queue when processing is slower than the clouds come) and inputs that stop
 // are warned about; health on /diagnostics; a restarted node says what its predecessor held.
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <is_graphs/SGraph.h>
 #include <nav_msgs/Odometry.h>
@@ -16,8 +17,6 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
-
-#include <diagnostic_updater/diagnostic_updater.h>
 
 #include <atomic>
 #include <condition_variable>
@@ -32,8 +31,8 @@
 #include "param_helpers.h"
 #include "pose_conversions.h"
 #include "run_marker.h"
-#include "sgraph_health.h"
 #include "sgraph_conversions.h"
+#include "sgraph_health.h"
 #include "sgraph_markers.h"
 #include "sgraph_params.h"
 #include "tf_lookup.h"
@@ -78,8 +77,8 @@ class SGraphNode {
     diagnostics_.add("processing", [this](diagnostic_updater::DiagnosticStatusWrapper& d) {
       health_.FillProcessing(params_.max_cloud_lag, d);
     });
-    diagnostics_timer_ =
-        nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+    diagnostics_timer_ = nh.createTimer(ros::Duration(1.0),
+                                        [this](const ros::TimerEvent&) { diagnostics_.update(); });
     tf_timer_ = nh.createTimer(ros::Duration(1.0 / params.tf_rate), &SGraphNode::OnTfTimer, this);
     worker_ = std::thread(&SGraphNode::Worker, this);
   }

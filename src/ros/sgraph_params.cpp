@@ -21,8 +21,9 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "max_cloud_lag", p.max_cloud_lag);
   if (p.cloud_queue < 1)
     throw ros_params::ParamError("parameter '" + pnh.resolveName("cloud_queue") + "' must be >= 1");
-  for (const auto& [name, value] : {std::pair<const char*, double>{"input_timeout", p.input_timeout},
-                                    {"max_cloud_lag", p.max_cloud_lag}})
+  for (const auto& [name, value] :
+       {std::pair<const char*, double>{"input_timeout", p.input_timeout},
+        {"max_cloud_lag", p.max_cloud_lag}})
     if (!(value > 0.0))
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
   Read(pnh, "marker_layer_spacing", p.markers.layer_spacing);

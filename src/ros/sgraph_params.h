@@ -18,9 +18,9 @@ struct SGraphNodeParams {
   double map_cloud_period{2.0};  // s between map cloud publications (when subscribed)
   double map_cloud_voxel{0.1};
   double tf_rate{20.0};
-  int cloud_queue{5};          // the cloud subscriber's queue: older clouds dropped (counted)
-  double input_timeout{2.0};   // s of the clock: clouds or odometry stopped, said once a while
-  double max_cloud_lag{1.0};   // s: processing this far behind the clouds' stamps is a warning
+  int cloud_queue{5};         // the cloud subscriber's queue: older clouds dropped (counted)
+  double input_timeout{2.0};  // s of the clock: clouds or odometry stopped, said once a while
+  double max_cloud_lag{1.0};  // s: processing this far behind the clouds' stamps is a warning
   ros_conversions::LidarCloudConfig cloud;  // cloud_layout, cloud_max_sweep_period
   sgraph::FrontendConfig frontend;
   sgraph::BackendConfig backend;

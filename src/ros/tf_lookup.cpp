@@ -25,7 +25,7 @@ Result<Eigen::Isometry3d> TfLookup::Lookup(const std::string& target, const std:
 }
 
 Result<ros::Time> TfLookup::LatestStamp(const std::string& target,
-                                         const std::string& source) const {
+                                        const std::string& source) const {
   using R = Result<ros::Time>;
   try {
     return R::Ok(buffer_.lookupTransform(target, source, ros::Time(0)).header.stamp);

@@ -52,8 +52,8 @@ TEST_P(GuardOnScenario, AcceptsEveryOdometryMessage) {
 INSTANTIATE_TEST_SUITE_P(Scenarios, GuardOnScenario,
                          ::testing::Values("R1_double_drift", "R3_kidnapped", "H1_office_harsh",
                                            "H4_fzk_haus_harsh", "M3_ac11_stairs_up",
-                                           "M7_tower_down", "S1_office_os1_64",
-                                           "R2_dropped_scans", "D6_large"));
+                                           "M7_tower_down", "S1_office_os1_64", "R2_dropped_scans",
+                                           "D6_large"));
 
 }  // namespace
 }  // namespace sim

@@ -9,9 +9,9 @@ namespace common {
 /// What a legged robot's odometry can do between two messages. Spot-like defaults, with margin:
 /// Spot walks at up to 1.6 m/s and turns at up to ~1.5 rad/s.
 struct OdometryGuardConfig {
-  double max_linear_speed{3.0};          // m/s
-  double max_angular_speed{3.0};         // rad/s
-  double max_linear_acceleration{10.0};  // m/s²
+  double max_linear_speed{3.0};           // m/s
+  double max_angular_speed{3.0};          // rad/s
+  double max_linear_acceleration{10.0};   // m/s²
   double max_angular_acceleration{20.0};  // rad/s²
   // Allowance on top of the kinematic bound for each step (stamping jitter, noise).
   double linear_slack{0.05};   // m

@@ -32,7 +32,7 @@ class InputWatchdog {
   enum class Health { kFresh = 0, kLate = 1, kStopped = 2 };
   struct Report {
     Health health{Health::kFresh};
-    std::string message;  // which input, how late; "" when fresh
+    std::string message;                             // which input, how late; "" when fresh
     double odometry_age{0.0}, map_to_odom_age{0.0};  // s
     double distance_since_sgraph{0.0};               // m
   };
@@ -52,8 +52,8 @@ class InputWatchdog {
   WatchdogConfig config_;
   double odometry_stamp_{0.0};
   double map_to_odom_stamp_{0.0};
-  double distance_{0.0};             // walked, at the newest odometry
-  double distance_at_sgraph_{0.0};   // walked, when the newest S-Graph revision came
+  double distance_{0.0};            // walked, at the newest odometry
+  double distance_at_sgraph_{0.0};  // walked, when the newest S-Graph revision came
 };
 
 const char* ToString(InputWatchdog::Health health);

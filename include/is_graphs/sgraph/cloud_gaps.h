@@ -15,7 +15,7 @@ class CloudGapCounter {
   /// Stamps not after the last one start over (a restarted bag).
   int Add(double stamp);
   int missing() const { return missing_; }  // since the start
-  double period() const;                     // s; 0 while unknown
+  double period() const;                    // s; 0 while unknown
 
  private:
   static constexpr int kWindow = 21;  // steps the period is the median of

@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "is_graphs/common/odometry_guard.h"
 #include "is_graphs/sgraph/backend_config.h"
 #include "is_graphs/sgraph/doorway_detection.h"
 #include "is_graphs/sgraph/frontend_config.h"
 #include "is_graphs/sgraph/keyframe_selector.h"
-#include "is_graphs/common/odometry_guard.h"
 #include "is_graphs/sgraph/odometry_buffer.h"
 #include "is_graphs/sgraph/plane_association.h"
 #include "is_graphs/sgraph/plane_extraction.h"

@@ -31,10 +31,9 @@ std::string OdometryGuardConfig::Validate() const {
         {"max_angular_acceleration", max_angular_acceleration},
         {"time_reset_threshold", time_reset_threshold}})
     if (!(value > 0.0) || !std::isfinite(value)) return std::string(name) + " must be > 0";
-  for (const auto& [name, value] :
-       {std::pair<const char*, double>{"linear_slack", linear_slack},
-        {"angular_slack", angular_slack},
-        {"step_confirm_time", step_confirm_time}})
+  for (const auto& [name, value] : {std::pair<const char*, double>{"linear_slack", linear_slack},
+                                    {"angular_slack", angular_slack},
+                                    {"step_confirm_time", step_confirm_time}})
     if (!(value >= 0.0) || !std::isfinite(value)) return std::string(name) + " must be >= 0";
   return "";
 }
@@ -64,10 +63,10 @@ std::string OdometryGuard::Implausible(double dt, const Eigen::Isometry3d& from,
                                        double angular_speed) const {
   const double distance = (to.translation() - from.translation()).norm();
   const double angle = RotationAngle(from, to);
-  const double v = std::min(config_.max_linear_speed,
-                            linear_speed + config_.max_linear_acceleration * dt);
-  const double w = std::min(config_.max_angular_speed,
-                            angular_speed + config_.max_angular_acceleration * dt);
+  const double v =
+      std::min(config_.max_linear_speed, linear_speed + config_.max_linear_acceleration * dt);
+  const double w =
+      std::min(config_.max_angular_speed, angular_speed + config_.max_angular_acceleration * dt);
   std::ostringstream why;
   why.precision(3);
   if (distance > v * dt + config_.linear_slack)
@@ -87,10 +86,9 @@ OdometryGuard::Result OdometryGuard::Check(double stamp, const Eigen::Isometry3d
   if (!std::isfinite(stamp) || !odom_T_base.matrix().allFinite()) {
     ++rejected_;
     r.verdict = Verdict::kNonFinite;
-    r.message = !std::isfinite(stamp) ? "a non-finite stamp"
-                : !odom_T_base.translation().allFinite()
-                    ? "a non-finite position"
-                    : "a non-finite orientation";
+    r.message = !std::isfinite(stamp)                    ? "a non-finite stamp"
+                : !odom_T_base.translation().allFinite() ? "a non-finite position"
+                                                         : "a non-finite orientation";
     return r;
   }
   if (has_last_ && stamp < last_stamp_ - config_.time_reset_threshold) {
@@ -112,11 +110,10 @@ OdometryGuard::Result OdometryGuard::Check(double stamp, const Eigen::Isometry3d
       ++rejected_;
       r.verdict = Verdict::kGlitch;
       r.message = "faster than the robot can move: " + why;
-      const bool continues =
-          has_pending_ && stamp > pending_last_stamp_ &&
-          Implausible(stamp - pending_last_stamp_, pending_last_, odom_T_base,
-                      config_.max_linear_speed, config_.max_angular_speed)
-              .empty();
+      const bool continues = has_pending_ && stamp > pending_last_stamp_ &&
+                             Implausible(stamp - pending_last_stamp_, pending_last_, odom_T_base,
+                                         config_.max_linear_speed, config_.max_angular_speed)
+                                 .empty();
       if (!continues) {
         has_pending_ = true;
         pending_first_stamp_ = stamp;
@@ -132,8 +129,8 @@ OdometryGuard::Result OdometryGuard::Check(double stamp, const Eigen::Isometry3d
       std::ostringstream s;
       s.precision(3);
       s << "odometry stepped by " << jump.norm() << " m, "
-        << RotationAngle(last_reading_, pending_first_) * 180.0 / M_PI << " deg at "
-        << std::fixed << pending_first_stamp_ << " s and stayed for "
+        << RotationAngle(last_reading_, pending_first_) * 180.0 / M_PI << " deg at " << std::fixed
+        << pending_first_stamp_ << " s and stayed for "
         << pending_last_stamp_ - pending_first_stamp_
         << " s: bridged (taken as a jump of the odometry frame, not motion of the robot)";
       // Across the step itself the robot moved as in the last accepted step (scaled to the time).

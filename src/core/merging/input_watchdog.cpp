@@ -66,8 +66,8 @@ InputWatchdog::Report InputWatchdog::Check(double now) const {
     if (!(value > degraded)) return;
     const bool stopped = value > lost;
     if (s.tellp() > 0) s << "; ";
-    s << what << " " << value << " " << unit << " (" << (stopped ? "LOST" : "DEGRADED")
-      << " past " << (stopped ? lost : degraded) << " " << unit << ")";
+    s << what << " " << value << " " << unit << " (" << (stopped ? "LOST" : "DEGRADED") << " past "
+      << (stopped ? lost : degraded) << " " << unit << ")";
     r.health = std::max(r.health, stopped ? Health::kStopped : Health::kLate);
   };
   late(r.odometry_age, config_.degraded_after, config_.lost_after, "no odometry for", "s");

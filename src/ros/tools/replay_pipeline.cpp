@@ -239,9 +239,10 @@ int main(int argc, char** argv) {
       "UNIQUE matches %zu, wrong (> 0.5 m or 5 deg from the truth, or another storey) %d, of "
       "them on another storey %d\n",
       audit.json().size(), audit.wrong(), audit.wrong_storeys());
-  std::printf("odometry: %d messages skipped by the guard (NaN, glitch, out of order), %d steps "
-              "bridged\n",
-              localization.builder().odometry_rejected(), localization.builder().odometry_bridged());
+  std::printf(
+      "odometry: %d messages skipped by the guard (NaN, glitch, out of order), %d steps "
+      "bridged\n",
+      localization.builder().odometry_rejected(), localization.builder().odometry_bridged());
   if (const auto& c = out["map_cloud_error"]; !c.is_null())
     std::printf("map cloud vs BIM wall-surfaces: RMSE %.3f m, median %.3f m (%d of %d points)\n",
                 c["rmse_m"].get<double>(), c["median_m"].get<double>(), c["used"].get<int>(),
