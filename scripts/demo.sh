@@ -37,10 +37,12 @@ source .ws/devel/setup.bash
 set -u
 rm -f "${out}/run.bag" "${out}/run.bag.active"
 echo "demo: localizing in $(basename "${building}") on ${bag} at ${rate}x (log: ${out}/roslaunch.log)"
-roslaunch -p "${ROS_MASTER_URI##*:}" is_graphs localize.launch bim:="${building}" \
-  storey:="${storey}" bag:="${root}/${bag}" rate:="${rate}" rviz:="${rviz}" \
-  record:="${root}/${out}/run.bag" > "${out}/roslaunch.log" 2>&1 || {
-  echo "demo: roslaunch failed; the end of ${out}/roslaunch.log:" >&2
+# roslaunch_checked.py: non-zero, naming the node, when a node failed (roslaunch exits 0 then);
+# a node that died and was restarted is a warning.
+scripts/roslaunch_checked.py --log "${out}/roslaunch.log" -- -p "${ROS_MASTER_URI##*:}" \
+  is_graphs localize.launch bim:="${building}" storey:="${storey}" bag:="${root}/${bag}" \
+  rate:="${rate}" rviz:="${rviz}" record:="${root}/${out}/run.bag" || {
+  echo "demo: the launch failed; the end of ${out}/roslaunch.log:" >&2
   tail -n 30 "${out}/roslaunch.log" >&2
   exit 1
 }

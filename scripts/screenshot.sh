@@ -73,9 +73,11 @@ source .ws/devel/setup.bash
 set -u
 rm -f "${out}/run.bag" "${out}/run.bag.active"
 echo "screenshot: rviz on ${bag} in $(basename "${building}") at ${rate}x, shot at ${shot_at} s (log: ${out}/roslaunch.log)"
-DISPLAY="${display}" setsid roslaunch -p "${port}" is_graphs localize.launch bim:="${building}" \
-  storey:="${storey}" bag:="${root}/${bag}" rate:="${rate}" rviz:=true \
-  rviz_config:="${root}/${out}/screenshot.rviz" record:="${root}/${out}/run.bag" > "${out}/roslaunch.log" 2>&1 &
+# roslaunch_checked.py: non-zero, naming the node, when a node failed (roslaunch exits 0 then).
+DISPLAY="${display}" setsid scripts/roslaunch_checked.py --log "${out}/roslaunch.log" -- \
+  -p "${port}" is_graphs localize.launch bim:="${building}" storey:="${storey}" \
+  bag:="${root}/${bag}" rate:="${rate}" rviz:=true rviz_config:="${root}/${out}/screenshot.rviz" \
+  record:="${root}/${out}/run.bag" &
 launch_pid=$!
 for _ in $(seq 1 120); do
   rosnode list >/dev/null 2>&1 && break
@@ -94,8 +96,10 @@ rosnode ping -c 1 /rviz >/dev/null 2>&1 || {
 }
 import -display "${display}" -window root "${out}/screen.png" || fail "import could not grab ${display}"
 echo "screenshot: grabbed ${out}/screen.png; the bag plays to its end"
-wait "${launch_pid}" || true
+launch_rc=0
+wait "${launch_pid}" || launch_rc=$?
 launch_pid=""
+[ "${launch_rc}" -eq 0 ] || fail "the launch failed (exit ${launch_rc}, see above and ${out}/roslaunch.log)"
 for _ in $(seq 1 50); do [ -f "${out}/run.bag" ] && break; sleep 0.1; done
 "${py}" scripts/evaluate_run.py "${out}/run.bag" --agraph "${agraph}" --storey "${storey}" \
   --plot "${out}/trajectory.png" --json "${out}/results.json" | tee "${out}/evaluate.txt"
