@@ -1,8 +1,9 @@
 // matcher_node: matches each S-Graph revision (`s_graph`) against the building's A-Graph
 // (`a_graph`, latched) and publishes `graph_match` (latched) and `graph_match/markers`. Thin:
 // the work is in is_graphs_core (matching::GraphMatcher). Matching runs on a worker thread that
-// always takes the newest S-Graph, so a slow match never piles up callbacks. A revision with a
-// non-finite value is ignored (warned); health on /diagnostics.
+// always takes the newest S-Graph, so a slow match never piles up callbacks. Elements of either
+// graph with non-finite values are left out and warned about (matching::CheckSGraph);
+// health on /diagnostics.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <is_graphs/AGraph.h>
 #include <is_graphs/GraphMatch.h>
@@ -21,7 +22,6 @@
 #include "graph_match_conversions.h"
 #include "graph_match_markers.h"
 #include "is_graphs/matching/graph_matcher.h"
-#include "is_graphs/sgraph/finite_checks.h"
 #include "param_helpers.h"
 #include "sgraph_conversions.h"
 #include "sgraph_session.h"
@@ -131,15 +131,8 @@ class MatcherNode {
   }
 
   void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
-    const std::string bad = sgraph::FirstNonFinite(ros_conversions::FromMsg(*msg));
     std::lock_guard<std::mutex> lock(mutex_);
     last_s_receipt_ = ros::Time::now();
-    if (!bad.empty()) {
-      ++rejected_;
-      ROS_WARN_THROTTLE(2.0, "matcher_node: %s revision %u: non-finite %s: revision ignored",
-                        s_sub_.getTopic().c_str(), msg->revision, bad.c_str());
-      return;
-    }
     if (pending_s_)
       ROS_DEBUG("matcher_node: S-Graph rev %u skipped (rev %u arrived)", pending_s_->revision,
                 msg->revision);
@@ -196,6 +189,7 @@ class MatcherNode {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       ++matches_;
+      left_out_ += static_cast<long>(match.warnings.size());
       last_status_ = matching::ToString(match.status);
       last_revision_ = msg.revision;
       last_ms_ = stats.milliseconds;
@@ -223,7 +217,7 @@ class MatcherNode {
     else
       d.summaryf(DiagnosticStatus::OK, "S-Graph rev %u: %s", last_revision_, last_status_.c_str());
     d.add("matches", matches_);
-    d.add("S-Graph revisions ignored (non-finite)", rejected_);
+    d.add("S-Graph elements left out (non-finite, malformed)", left_out_);
     d.add("last status", last_status_);
     d.addf("last match [ms]", "%.1f", last_ms_);
     d.addf("slowest match [ms]", "%.1f", max_ms_);
@@ -246,7 +240,7 @@ class MatcherNode {
   diagnostic_updater::Updater diagnostics_;
   ros::Timer diagnostics_timer_;
   ros::Time last_s_receipt_;
-  long matches_{0}, rejected_{0};
+  long matches_{0}, left_out_{0};
   std::string last_status_{"none yet"};
   unsigned last_revision_{0};
   double last_ms_{0.0}, max_ms_{0.0};

@@ -236,7 +236,7 @@ void MergerNode::Apply(const merging::MergeOutput& out, const is_graphs::SGraph&
       bim_T_map_ = out.bim_T_map;
       anchor_ = out.anchor;
       covariance_ = out.covariance;
-      // Back from DEGRADED only while every input is fresh (a new revision merged).
+      // Not back from DEGRADED while an input is late (the watchdog says when they are fresh).
       const bool fresh = watchdog_.Check(ros::Time::now().toSec()).health ==
                          merging::InputWatchdog::Health::kFresh;
       if ((!state_.localized() && (fresh || !state_.has_pose())) ||

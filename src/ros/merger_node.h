@@ -44,8 +44,8 @@ class MergerNode {
   void OnOdometry(const nav_msgs::Odometry::ConstPtr& msg);
   // --- watchdog: the inputs' ages against the clock ---
   void OnWatchdogTimer();
-  // LOCALIZED -> DEGRADED -> LOST as inputs fall behind (never back to LOCALIZED on odometry
-  // alone: a merge of a new S-Graph revision does that, Apply). True when the state changed.
+  // LOCALIZED -> DEGRADED -> LOST as inputs fall behind; DEGRADED -> LOCALIZED once every input
+  // is fresh again (the merge holds: LOST needs a new match). True when the state changed.
   bool ApplyWatchdogLocked(const merging::InputWatchdog::Report& report);
   // --- state (mutex_ held) ---
   void ResetLocked(const std::string& why);

@@ -120,7 +120,15 @@ void MergerNode::OnWatchdogTimer() {
 bool MergerNode::ApplyWatchdogLocked(const merging::InputWatchdog::Report& report) {
   last_report_ = report;
   using Health = merging::InputWatchdog::Health;
-  if (!localized_ || report.health == Health::kFresh) return false;
+  if (!localized_) return false;
+  if (report.health == Health::kFresh) {
+    // Every input is back in time and the merge was never contradicted: the pose is as good as
+    // between any two revisions.
+    if (state_.state() != merging::LocalizationState::kDegraded) return false;
+    ROS_INFO("merger_node: LOCALIZED again: every input fresh");
+    state_.SetLocalized(ros::Time::now().toSec(), "localized: inputs fresh again");
+    return true;
+  }
   if (report.health == Health::kStopped) {
     ROS_WARN("merger_node: LOST: %s; matching again", report.message.c_str());
     localized_ = false;
