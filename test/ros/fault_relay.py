@@ -94,7 +94,9 @@ class FaultRelay:
             if self.state == "before" and t >= self.start:
                 self.state = "in"
                 self.event("begin", t, stamp)
-            if self.state == "in" and not inside and (self.fault != "odom_step"):
+            over = self.glitched if self.fault == "odom_glitch" else (
+                self.fault != "odom_step" and t >= self.start + self.duration)
+            if self.state == "in" and over:
                 self.state = "after"
                 self.event("end", t, stamp)
         return inside
