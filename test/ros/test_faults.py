@@ -206,7 +206,7 @@ class FaultTest(unittest.TestCase):
         plays = int(get("plays", 1))
         c = Collector(plays)
         cls.c = c
-        cls.wall = c.wait(float(get("max_wait", 150.0)), float(get("bag_end_quiet", 4.0)))
+        cls.wall = c.wait(float(get("max_wait", 150.0)), float(get("bag_end_quiet", 2.5)))
         cls.last_pids = node_pids()
         cls.analyze()
 
@@ -384,10 +384,16 @@ class FaultTest(unittest.TestCase):
                     elif st != LOCALIZED:
                         since = None
                 reloc = None if since is None else max(0.0, since - ref)
+            # Measured whatever the bound: the first LOCALIZED after it left LOCALIZED.
+            first_back = None
+            if leave is not None:
+                first_back = next((p - begin for p, st in self.timeline
+                                   if p >= begin + leave and st == LOCALIZED), None)
             fmt = lambda v: "never" if v is None else f"{v:.2f} s"  # noqa: E731
             self.out(f"{name}: from {begin:.2f} s to {f['end']:.2f} s"
                      + (f", node back at {f['back']:.2f} s" if f["back"] is not None else "")
-                     + f"; left LOCALIZED after {fmt(leave)}, LOST after {fmt(lost)}; "
+                     + f"; left LOCALIZED after {fmt(leave)}, LOST after {fmt(lost)}, "
+                     + f"LOCALIZED again {fmt(first_back)} after the start; "
                      + f"LOCALIZED again {fmt(reloc)} after its {f.get('relocalize_from', 'end')}"
                      + f" (state there + bound: {STATE_NAMES.get(self.state_at(ref + bound)) if ref is not None else '-'})")
             b = float(f.get("max_seconds_to_leave_localized", 0.0))
