@@ -22,6 +22,7 @@
 #include "agraph_conversions.h"
 #include "graph_match_conversions.h"
 #include "is_graphs/geometry/se3.h"
+#include "is_graphs/merging/carried_match.h"
 #include "is_graphs/sgraph/finite_checks.h"
 #include "merger_markers.h"
 #include "param_helpers.h"
@@ -95,9 +96,19 @@ void MergerNode::OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
         "sgraph_node restarted or lost track): merge reset, matching again",
         msg->revision, latest_s_->revision, msg->keyframes.size(), latest_s_->keyframes.size());
     const bool was_localized = localized_ || state_.state() == merging::LocalizationState::kLost;
+    // A new process counts its revisions from 1; a track loss keeps counting (and may be a
+    // kidnap: nothing is carried over it).
+    const bool restarted = msg->revision < latest_s_->revision;
+    const bool carry = params_.carry_over_restart && restarted && localized_ && last_bim_T_odom_;
+    if (carry) carry_ = Carry{*last_bim_T_odom_ * guard_.correction(), last_storey_};
+    // The new sgraph_node's guard starts over: so does this one (the same readings' frame).
+    if (restarted) guard_.Reset();
     ResetLocked("the S-Graph restarted");
     // A robot that was localized and no longer is, is LOST (not "not yet localized").
-    if (was_localized) state_.SetLost("the S-Graph restarted (track lost): matching again");
+    if (was_localized)
+      state_.SetLost(carry ? "sgraph_node restarted: its S-Graph is lost; checking the merge "
+                             "carried over by the odometry against the new one"
+                           : "the S-Graph restarted (track lost): matching again");
     session_revision_ = msg->revision;
   }
   latest_s_ = msg;
@@ -125,6 +136,7 @@ void MergerNode::Work() {
     is_graphs::GraphMatch::ConstPtr match_msg;
     is_graphs::SGraph::ConstPtr s_msg;
     bool reset = false, solve_s = false;
+    std::optional<Carry> carry;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait_for(lock, std::chrono::milliseconds(200));
@@ -153,6 +165,13 @@ void MergerNode::Work() {
       }
       solve_s = new_s_ && !match_msg;
       if (!match_msg) new_s_ = false;
+      if (carry_ && state_.distance_walked() > params_.carry_max_distance) {
+        ROS_WARN("merger_node: the merge carried over sgraph_node's restart expired after %.1f m "
+                 "(carry_max_distance): waiting for a unique match",
+                 state_.distance_walked());
+        carry_.reset();
+      }
+      carry = carry_;
     }
     if (reset) merger_.Reset();
     if (a_msg) SetAGraph(a_msg);
@@ -170,8 +189,32 @@ void MergerNode::Work() {
       Apply(merger_.OnMatch(match, ros_conversions::FromMsg(*s_msg)), *s_msg);
     } else if (solve_s && merger_.merged()) {
       Apply(merger_.OnSGraph(ros_conversions::FromMsg(*s_msg)), *s_msg);
+    } else if (solve_s && carry) {
+      TryCarried(*carry, *s_msg);
     }
   }
+}
+
+void MergerNode::TryCarried(const Carry& carry, const is_graphs::SGraph& s_msg) {
+  const sgraph::SGraph s_graph = ros_conversions::FromMsg(s_msg);
+  const Eigen::Isometry3d bim_T_map = merging::CarriedTransform(carry.bim_T_odom, s_graph);
+  // Walls seen 1.5 m tall count (the matcher's 1.9 m keeps cupboards out of a blind search; a
+  // fresh S-Graph has seen its walls partly, and the carried pose is no blind search).
+  matching::MatcherConfig walls;
+  walls.surface_min_height = 1.5;
+  matching::GraphMatch match =
+      merging::CarriedMatch(merger_.a_graph(), s_graph, bim_T_map, carry.storey,
+                            params_.merger.min_surface_inliers, walls);  // the start checks more
+  if (match.status != matching::MatchStatus::kUnique) return;  // too few planes yet
+  merging::MergeOutput out = merger_.OnMatch(match, s_graph);
+  if (!out.merged) {  // the checks refused it (yet): no pose, the next revision tries again
+    ROS_DEBUG("merger_node: the carried merge not (yet) confirmed: %s", out.message.c_str());
+    merger_.Reset();
+    return;
+  }
+  out.message = "the merge from before sgraph_node restarted, carried over by the odometry and "
+                "checked on the new S-Graph: " + out.message;
+  Apply(out, s_msg);
 }
 
 void MergerNode::SetAGraph(const is_graphs::AGraph::ConstPtr& msg) {
@@ -185,6 +228,8 @@ void MergerNode::SetAGraph(const is_graphs::AGraph::ConstPtr& msg) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       localized_ = false;
+      carry_.reset();
+      last_bim_T_odom_.reset();
       state_.Reset("the building changed; waiting for a unique match");
       status_dirty_ = true;
     }
@@ -232,6 +277,9 @@ void MergerNode::Apply(const merging::MergeOutput& out, const is_graphs::SGraph&
     max_merge_ms_ = std::max(max_merge_ms_, last_merge_ms_);
     if (out.merged) {
       if (!localized_) watchdog_.Arm(ros::Time::now().toSec(), state_.distance_walked());
+      last_bim_T_odom_ = out.bim_T_odom;
+      if (last_match_ && last_match_->storey_id >= 0) last_storey_ = last_match_->storey_id;
+      carry_.reset();
       localized_ = true;
       bim_T_map_ = out.bim_T_map;
       anchor_ = out.anchor;

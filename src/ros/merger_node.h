@@ -16,6 +16,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -57,6 +58,9 @@ class MergerNode {
   // --- worker ---
   void Work();
   void SetAGraph(const is_graphs::AGraph::ConstPtr& msg);
+  // The carried merge checked on the new S-Graph revision (a start like a match's).
+  struct Carry;
+  void TryCarried(const Carry& carry, const is_graphs::SGraph& s_msg);
   void Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg);
 
   MergerNodeParams params_;
@@ -92,6 +96,14 @@ class MergerNode {
   merging::OdometryAnchor anchor_;  // the pose: anchor_.Pose(odom_T_base)
   Eigen::Matrix3d covariance_{Eigen::Matrix3d::Identity()};
   merging::MergeState state_;
+  // The merge before sgraph_node restarted, carried by the odometry (B <- odom of the readings).
+  struct Carry {
+    Eigen::Isometry3d bim_T_odom{Eigen::Isometry3d::Identity()};
+    int storey{0};
+  };
+  std::optional<Carry> carry_;
+  std::optional<Eigen::Isometry3d> last_bim_T_odom_;  // of the last merge (corrected readings)
+  int last_storey_{0};
   common::OdometryGuard guard_;
   merging::InputWatchdog watchdog_;
   merging::InputWatchdog::Report last_report_;

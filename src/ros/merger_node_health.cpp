@@ -41,6 +41,8 @@ void MergerNode::OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
     ROS_WARN("merger_node: odometry went back in time by %.1f s (bag restarted?): merge reset",
              (last_odom_stamp_ - stamp).toSec());
     ResetLocked("time went back");
+    last_bim_T_odom_.reset();  // the odometry started over: nothing to carry
+    carry_.reset();
     tf_buffer_.clear();
     latest_s_.reset();
     session_revision_ = 0;

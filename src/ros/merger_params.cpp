@@ -54,6 +54,8 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "status_rate", p.status_rate);
   Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
   Read(pnh, "watchdog_rate", p.watchdog_rate);
+  Read(pnh, "carry_over_restart", p.carry_over_restart);
+  Read(pnh, "carry_max_distance", p.carry_max_distance);
   auto& w = p.watchdog;
   Read(pnh, "degraded_after", w.degraded_after);
   Read(pnh, "lost_after", w.lost_after);
@@ -74,7 +76,8 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must not be empty");
   for (const auto& [name, value] : {std::pair<const char*, double>{"match_wait", p.match_wait},
                                     {"status_rate", p.status_rate},
-                                    {"watchdog_rate", p.watchdog_rate}})
+                                    {"watchdog_rate", p.watchdog_rate},
+        {"carry_max_distance", p.carry_max_distance}})
     if (!(value > 0.0))
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
   const std::string error = c.Validate();

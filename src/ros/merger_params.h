@@ -20,6 +20,11 @@ struct MergerNodeParams {
   common::OdometryGuardConfig odometry_guard;  // config/odometry_guard.yaml, as sgraph_node's
   merging::WatchdogConfig watchdog;
   double watchdog_rate{20.0};  // Hz: the inputs' ages are checked this often
+  // A restarted sgraph_node (a new process: revisions start over) while localized: the merge is
+  // carried over by the odometry and checked against the new S-Graph's planes (CarriedMatch)
+  // until a UNIQUE match comes or the robot walked carry_max_distance [m].
+  bool carry_over_restart{true};
+  double carry_max_distance{10.0};
   ros_markers::MergerMarkerStyle markers;
 };
 

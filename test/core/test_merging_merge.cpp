@@ -18,6 +18,7 @@
 #include "is_graphs/merging/merger.h"
 #include "is_graphs/merging/recent_evidence.h"
 #include "is_graphs/sgraph/plane_fit.h"
+#include "is_graphs/merging/carried_match.h"
 #include "matching_test_helpers.h"
 
 namespace is_graphs {
@@ -447,6 +448,46 @@ TEST(Merge, MatchesForAnotherAGraphAreIgnored) {
   const MergeOutput out = merger.OnMatch(c.match, c.s.graph);
   EXPECT_EQ(out.event, MergeEvent::kNone);
   EXPECT_FALSE(out.merged);
+}
+
+// A merge carried over a restart of sgraph_node by the odometry: under the carried B_x_M the
+// new S-Graph's wall planes are paired with the A-surfaces they lie along, its rooms with the
+// A-rooms their centres land in, and the merger's own
+// start checks accept it and recover the truth; a motion 1.5 m or 20 deg off pairs too little to
+// start (NONE), so a stale carry publishes nothing.
+TEST(CarriedMatch, PairsThePlanesUnderTheCarriedMotionAndTheMergerChecksIt) {
+  const agraph::AGraph building = TwoRooms();
+  const Eigen::Isometry3d truth = geometry::IsometryFromXYYaw(3.0, -2.0, 40.0 * kDeg, 0.5);
+  SyntheticCase c = MakeCase(building, truth, 0.01);
+  // The new S-Graph's map is its odometry frame turned and moved (its own optimization).
+  const Eigen::Isometry3d map_T_odom = geometry::IsometryFromXYYaw(0.4, -0.3, 3.0 * kDeg);
+  for (auto& k : c.s.graph.keyframes) k.odom_pose = map_T_odom.inverse() * k.pose;
+  const Eigen::Isometry3d bim_T_odom = truth * map_T_odom;  // what the last merge knew
+  const Eigen::Isometry3d carried = CarriedTransform(bim_T_odom, c.s.graph);
+  EXPECT_LT((carried.matrix() - truth.matrix()).norm(), 1e-9);
+
+  const matching::GraphMatch match = CarriedMatch(building, c.s.graph, carried, 0, 4);
+  ASSERT_EQ(match.status, matching::MatchStatus::kUnique);
+  ASSERT_EQ(match.room_pairs.size(), c.s.room_truth.size());
+  for (const auto& p : match.room_pairs) EXPECT_EQ(c.s.room_truth.at(p.s_id), p.a_id);
+  int right = 0;
+  for (const auto& p : match.surface_pairs) {
+    const auto truth_pair = c.s.plane_truth.find(p.s_id);
+    ASSERT_NE(truth_pair, c.s.plane_truth.end()) << "S-plane " << p.s_id << " is clutter";
+    // A plane along collinear A-surfaces is paired with each: its true one among them.
+    right += truth_pair->second == p.a_id;
+  }
+  EXPECT_GE(right, static_cast<int>(c.s.plane_truth.size()) - 1);
+  Merger merger{MergerConfig()};
+  ASSERT_EQ(merger.SetAGraph(building), "");
+  ExpectRecovered(merger.OnMatch(match, c.s.graph), truth, 0.02, 0.5);
+
+  for (const Eigen::Isometry3d& off :
+       {geometry::IsometryFromXYYaw(1.5, 0.0, 0.0), geometry::IsometryFromXYYaw(0.0, 0.0, 20 * kDeg)}) {
+    const matching::GraphMatch wrong = CarriedMatch(building, c.s.graph, off * truth, 0, 4);
+    EXPECT_EQ(wrong.status, matching::MatchStatus::kNone)
+        << wrong.surface_pairs.size() << " pairs under a motion 1.5 m or 20 deg off";
+  }
 }
 
 TEST(MergeState, TracksTimeAndDistanceToLocalize) {
