@@ -166,9 +166,10 @@ void MergerNode::Work() {
       solve_s = new_s_ && !match_msg;
       if (!match_msg) new_s_ = false;
       if (carry_ && state_.distance_walked() > params_.carry_max_distance) {
-        ROS_WARN("merger_node: the merge carried over sgraph_node's restart expired after %.1f m "
-                 "(carry_max_distance): waiting for a unique match",
-                 state_.distance_walked());
+        ROS_WARN(
+            "merger_node: the merge carried over sgraph_node's restart expired after %.1f m "
+            "(carry_max_distance): waiting for a unique match",
+            state_.distance_walked());
         carry_.reset();
       }
       carry = carry_;
@@ -205,15 +206,17 @@ void MergerNode::TryCarried(const Carry& carry, const is_graphs::SGraph& s_msg) 
   matching::GraphMatch match =
       merging::CarriedMatch(merger_.a_graph(), s_graph, bim_T_map, carry.storey,
                             params_.merger.min_surface_inliers, walls);  // the start checks more
-  if (match.status != matching::MatchStatus::kUnique) return;  // too few planes yet
+  if (match.status != matching::MatchStatus::kUnique) return;            // too few planes yet
   merging::MergeOutput out = merger_.OnMatch(match, s_graph);
   if (!out.merged) {  // the checks refused it (yet): no pose, the next revision tries again
     ROS_DEBUG("merger_node: the carried merge not (yet) confirmed: %s", out.message.c_str());
     merger_.Reset();
     return;
   }
-  out.message = "the merge from before sgraph_node restarted, carried over by the odometry and "
-                "checked on the new S-Graph: " + out.message;
+  out.message =
+      "the merge from before sgraph_node restarted, carried over by the odometry and "
+      "checked on the new S-Graph: " +
+      out.message;
   Apply(out, s_msg);
 }
 

@@ -77,7 +77,7 @@ MergerNodeParams ReadParams(const ros::NodeHandle& pnh) {
   for (const auto& [name, value] : {std::pair<const char*, double>{"match_wait", p.match_wait},
                                     {"status_rate", p.status_rate},
                                     {"watchdog_rate", p.watchdog_rate},
-        {"carry_max_distance", p.carry_max_distance}})
+                                    {"carry_max_distance", p.carry_max_distance}})
     if (!(value > 0.0))
       throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must be > 0");
   const std::string error = c.Validate();

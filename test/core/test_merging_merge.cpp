@@ -13,12 +13,12 @@
 #include "is_graphs/agraph/agraph_io.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/synthetic_sgraph.h"
+#include "is_graphs/merging/carried_match.h"
 #include "is_graphs/merging/consistency_check.h"
 #include "is_graphs/merging/merge_state.h"
 #include "is_graphs/merging/merger.h"
 #include "is_graphs/merging/recent_evidence.h"
 #include "is_graphs/sgraph/plane_fit.h"
-#include "is_graphs/merging/carried_match.h"
 #include "matching_test_helpers.h"
 
 namespace is_graphs {
@@ -482,8 +482,8 @@ TEST(CarriedMatch, PairsThePlanesUnderTheCarriedMotionAndTheMergerChecksIt) {
   ASSERT_EQ(merger.SetAGraph(building), "");
   ExpectRecovered(merger.OnMatch(match, c.s.graph), truth, 0.02, 0.5);
 
-  for (const Eigen::Isometry3d& off :
-       {geometry::IsometryFromXYYaw(1.5, 0.0, 0.0), geometry::IsometryFromXYYaw(0.0, 0.0, 20 * kDeg)}) {
+  for (const Eigen::Isometry3d& off : {geometry::IsometryFromXYYaw(1.5, 0.0, 0.0),
+                                       geometry::IsometryFromXYYaw(0.0, 0.0, 20 * kDeg)}) {
     const matching::GraphMatch wrong = CarriedMatch(building, c.s.graph, off * truth, 0, 4);
     EXPECT_EQ(wrong.status, matching::MatchStatus::kNone)
         << wrong.surface_pairs.size() << " pairs under a motion 1.5 m or 20 deg off";

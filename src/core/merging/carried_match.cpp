@@ -66,7 +66,8 @@ matching::GraphMatch CarriedMatch(const agraph::AGraph& building, const sgraph::
       break;
     }
   }
-  match.status = paired >= min_planes ? matching::MatchStatus::kUnique : matching::MatchStatus::kNone;
+  match.status =
+      paired >= min_planes ? matching::MatchStatus::kUnique : matching::MatchStatus::kNone;
   return match;
 }
 
