@@ -79,7 +79,9 @@ void MergerNode::OnAGraph(const is_graphs::AGraph::ConstPtr& msg) {
 }
 
 void MergerNode::OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
-  const std::string bad = sgraph::FirstNonFinite(ros_conversions::FromMsg(*msg));
+  // Converted once here (the finiteness check needs it) and handed to the worker with the message.
+  auto graph = std::make_shared<const sgraph::SGraph>(ros_conversions::FromMsg(*msg));
+  const std::string bad = sgraph::FirstNonFinite(*graph);
   std::unique_lock<std::mutex> lock(mutex_);
   if (!bad.empty()) {
     ++sgraph_rejected_;
@@ -112,6 +114,7 @@ void MergerNode::OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
     session_revision_ = msg->revision;
   }
   latest_s_ = msg;
+  latest_s_graph_ = std::move(graph);
   new_s_ = true;
   wake_.notify_all();
   lock.unlock();
@@ -135,6 +138,7 @@ void MergerNode::Work() {
     is_graphs::AGraph::ConstPtr a_msg;
     is_graphs::GraphMatch::ConstPtr match_msg;
     is_graphs::SGraph::ConstPtr s_msg;
+    std::shared_ptr<const sgraph::SGraph> s_graph;  // s_msg converted
     bool reset = false, solve_s = false;
     std::optional<Carry> carry;
     {
@@ -145,6 +149,7 @@ void MergerNode::Work() {
       reset = reset_merger_;
       reset_merger_ = false;
       s_msg = latest_s_;
+      s_graph = latest_s_graph_;
       if (pending_match_) {
         const unsigned seen = latest_s_ ? latest_s_->revision : 0;
         if (pending_match_->s_graph_revision < session_revision_) {
@@ -187,17 +192,17 @@ void MergerNode::Work() {
                           match.a_graph_sha256.c_str(), merger_.a_graph_sha256().c_str());
         continue;
       }
-      Apply(merger_.OnMatch(match, ros_conversions::FromMsg(*s_msg)), *s_msg);
+      Apply(merger_.OnMatch(match, *s_graph), *s_msg, *s_graph);
     } else if (solve_s && merger_.merged()) {
-      Apply(merger_.OnSGraph(ros_conversions::FromMsg(*s_msg)), *s_msg);
+      Apply(merger_.OnSGraph(*s_graph), *s_msg, *s_graph);
     } else if (solve_s && carry) {
-      TryCarried(*carry, *s_msg);
+      TryCarried(*carry, *s_msg, *s_graph);
     }
   }
 }
 
-void MergerNode::TryCarried(const Carry& carry, const is_graphs::SGraph& s_msg) {
-  const sgraph::SGraph s_graph = ros_conversions::FromMsg(s_msg);
+void MergerNode::TryCarried(const Carry& carry, const is_graphs::SGraph& s_msg,
+                            const sgraph::SGraph& s_graph) {
   const Eigen::Isometry3d bim_T_map = merging::CarriedTransform(carry.bim_T_odom, s_graph);
   // Walls seen 1.5 m tall count (the matcher's 1.9 m keeps cupboards out of a blind search; a
   // fresh S-Graph has seen its walls partly, and the carried pose is no blind search).
@@ -217,7 +222,7 @@ void MergerNode::TryCarried(const Carry& carry, const is_graphs::SGraph& s_msg) 
       "the merge from before sgraph_node restarted, carried over by the odometry and "
       "checked on the new S-Graph: " +
       out.message;
-  Apply(out, s_msg);
+  Apply(out, s_msg, s_graph);
 }
 
 void MergerNode::SetAGraph(const is_graphs::AGraph::ConstPtr& msg) {
@@ -244,7 +249,8 @@ void MergerNode::SetAGraph(const is_graphs::AGraph::ConstPtr& msg) {
     ROS_INFO("merger_node: A-Graph '%s' with %zu rooms", msg->building.c_str(), msg->rooms.size());
 }
 
-void MergerNode::Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg) {
+void MergerNode::Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg,
+                       const sgraph::SGraph& s_graph) {
   using merging::MergeEvent;
   const auto& sol = out.solution;
   const Eigen::Vector3d xi = geometry::ToXYYaw(out.bim_T_map);
@@ -316,9 +322,8 @@ void MergerNode::Apply(const merging::MergeOutput& out, const is_graphs::SGraph&
     is_graph_pub_.publish(msg);
   }
   if (marker_pub_.getNumSubscribers() > 0) {
-    auto markers =
-        ros_markers::BuildMergerMarkers(merger_.a_graph(), ros_conversions::FromMsg(s_msg),
-                                        merger_.pairs(), out.bim_T_map, params_.markers);
+    auto markers = ros_markers::BuildMergerMarkers(merger_.a_graph(), s_graph, merger_.pairs(),
+                                                   out.bim_T_map, params_.markers);
     for (auto& m : markers.markers) m.header.stamp = s_msg.header.stamp;
     marker_pub_.publish(markers);
   }

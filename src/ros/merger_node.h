@@ -15,6 +15,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -60,8 +61,11 @@ class MergerNode {
   void SetAGraph(const is_graphs::AGraph::ConstPtr& msg);
   // The carried merge checked on the new S-Graph revision (a start like a match's).
   struct Carry;
-  void TryCarried(const Carry& carry, const is_graphs::SGraph& s_msg);
-  void Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg);
+  void TryCarried(const Carry& carry, const is_graphs::SGraph& s_msg,
+                  const sgraph::SGraph& s_graph);
+  // `s_graph`: `s_msg` converted (once, in OnSGraph).
+  void Apply(const merging::MergeOutput& out, const is_graphs::SGraph& s_msg,
+             const sgraph::SGraph& s_graph);
 
   MergerNodeParams params_;
   merging::Merger merger_;                      // the worker's
@@ -84,6 +88,7 @@ class MergerNode {
   std::condition_variable wake_;
   is_graphs::AGraph::ConstPtr pending_a_;
   is_graphs::SGraph::ConstPtr latest_s_;
+  std::shared_ptr<const sgraph::SGraph> latest_s_graph_;  // latest_s_ converted
   bool new_s_{false};
   is_graphs::GraphMatch::ConstPtr pending_match_;
   ros::WallTime pending_match_since_;

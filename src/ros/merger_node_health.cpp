@@ -45,6 +45,7 @@ void MergerNode::OnOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
     carry_.reset();
     tf_buffer_.clear();
     latest_s_.reset();
+    latest_s_graph_.reset();
     session_revision_ = 0;
   }
   last_odom_stamp_ = stamp;

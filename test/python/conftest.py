@@ -38,6 +38,17 @@ def _run(args, timeout=300):
                           text=True, timeout=timeout, env=env)
 
 
+def fails(proc, *words):
+    """The converter stopped with exit 2 and one error line (no traceback) holding `words`."""
+    assert proc.returncode == 2, (proc.stdout, proc.stderr)
+    assert "Traceback" not in proc.stderr
+    lines = proc.stderr.strip().splitlines()
+    assert lines and lines[-1].startswith("ifc_to_agraph: error: "), proc.stderr
+    for w in words:
+        assert w in lines[-1], lines[-1]
+    return lines[-1]
+
+
 def convert_quiet(run_converter, path, out):
     """Converts `path` into `out` (--quiet): (the A-Graph as a dict, the converter's stderr)."""
     proc = run_converter([path, "-o", out, "--quiet"])

@@ -8,19 +8,9 @@ import tempfile
 
 import pytest
 
-from conftest import CLI, REPO
+from conftest import CLI, REPO, fails
 
 OFFICE = os.path.join(REPO, "bim", "office.ifc")
-
-
-def fails(proc, *words):
-    assert proc.returncode == 2, (proc.stdout, proc.stderr)
-    assert "Traceback" not in proc.stderr
-    lines = proc.stderr.strip().splitlines()
-    assert lines and lines[-1].startswith("ifc_to_agraph: error: "), proc.stderr
-    for w in words:
-        assert w in lines[-1], lines[-1]
-    return lines[-1]
 
 
 def both_modes(run_converter, path, tmp_path, *words):

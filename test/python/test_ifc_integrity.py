@@ -8,20 +8,10 @@ import sys
 
 import pytest
 
-from conftest import REPO, SHARED_BIM
+from conftest import REPO, SHARED_BIM, fails
 
 OFFICE = os.path.join(REPO, "bim", "office.ifc")
 LINE = re.compile(rb"(?m)^#(\d+)=([A-Z0-9_]+)\((.*)\);$")
-
-
-def fails(proc, *words):
-    assert proc.returncode == 2, (proc.stdout, proc.stderr)
-    assert "Traceback" not in proc.stderr
-    lines = proc.stderr.strip().splitlines()
-    assert lines and lines[-1].startswith("ifc_to_agraph: error: "), proc.stderr
-    for w in words:
-        assert w in lines[-1], lines[-1]
-    return lines[-1]
 
 
 def converted(proc):

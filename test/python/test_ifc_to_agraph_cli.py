@@ -5,6 +5,8 @@ import os
 
 import pytest
 
+from conftest import fails
+
 HOUSE_ROOM_AREA = 3.7 * 3.6
 
 
@@ -15,16 +17,6 @@ def ok(proc):
     assert os.path.isabs(path) and path.endswith(".agraph.json")
     with open(path, encoding="utf-8") as fh:
         return json.load(fh)
-
-
-def fails(proc, *words):
-    assert proc.returncode == 2, (proc.stdout, proc.stderr)
-    assert "Traceback" not in proc.stderr
-    lines = proc.stderr.strip().splitlines()
-    assert lines and lines[-1].startswith("ifc_to_agraph: error: "), proc.stderr
-    for w in words:
-        assert w in lines[-1], lines[-1]
-    return lines[-1]
 
 
 @pytest.mark.parametrize("unit,scale", [("m", 1.0), ("mm", 0.001), ("ft", 0.3048)])

@@ -2,24 +2,10 @@
 
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/surface_evidence.h"
+#include "is_graphs/sim/room_geometry.h"
 
 namespace is_graphs {
 namespace merging {
-namespace {
-
-bool Inside(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
-  bool inside = false;
-  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      inside = !inside;
-  }
-  return inside;
-}
-
-}  // namespace
 
 Eigen::Isometry3d CarriedTransform(const Eigen::Isometry3d& bim_T_odom,
                                    const sgraph::SGraph& graph) {
@@ -60,7 +46,8 @@ matching::GraphMatch CarriedMatch(const agraph::AGraph& building, const sgraph::
     if (room.type != sgraph::RoomType::kRoom || !room.center.allFinite()) continue;
     const Eigen::Vector2d c = (bim_T_map * room.center).head<2>();
     for (const agraph::Room& a : building.rooms) {
-      if (a.storey != storey || a.polygon.size() < 3 || !Inside(a.polygon, c)) continue;
+      if (a.storey != storey || a.polygon.size() < 3 || !sim::PointInPolygon(a.polygon, c))
+        continue;
       if ((a.center.head<2>() - c).norm() <= config.centre_tolerance)
         match.room_pairs.push_back({a.id, room.id, 1.0});
       break;
