@@ -3,6 +3,7 @@
 #include <diagnostic_msgs/DiagnosticStatus.h>
 
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 
 namespace is_graphs {
@@ -19,9 +20,14 @@ int SGraphHealth::OnCloud(const ros::Time& now, double stamp) {
 }
 
 void SGraphHealth::OnCloudSkipped(const std::string& reason) {
+  // Counted by kind: the numbers in a reason (stamps, counts) are left out, so the map stays
+  // as small as the kinds of reasons.
+  std::string kind;
+  for (char c : reason.substr(0, 60))
+    if (!std::isdigit(static_cast<unsigned char>(c)) && c != '.') kind += c;
   std::lock_guard<std::mutex> lock(mutex_);
   ++clouds_skipped_;
-  ++skip_reasons_[reason.substr(0, 60)];
+  ++skip_reasons_[kind];
 }
 
 void SGraphHealth::OnOdometry(const ros::Time& now, bool skipped, bool bridged,
