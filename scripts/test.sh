@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the whole suite (gtest of the core, pytest of the BIM scripts, rostest of the nodes)
 # through `catkin_make run_tests`, then catkin_test_results' summary and one closing line
-# "test: N passed, N failed, N skipped" (scripts/test_summary.py). Non-zero on any failure, on a build failure of the
+# "test: N passed, N failed, N skipped" (scripts/test_summary.py), after the minutes each group
+# of tests took. Non-zero on any failure, on a build failure of the
 # tests, and when no test ran at all.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -12,6 +13,7 @@ export ROS_HOME="${ROS_HOME:-$(pwd)/.ws/ros_home}"
 [ -n "${ROS_IP:-}" ] || export ROS_HOSTNAME="${ROS_HOSTNAME:-localhost}"
 mkdir -p "${ROS_HOME}"
 rm -rf .ws/build/test_results
+started=$(date +%s)
 # shellcheck disable=SC1091
 set +u  # ROS setup scripts read unset variables
 source .ws/devel/setup.bash
@@ -31,5 +33,6 @@ if [ "${make_rc}" != 0 ]; then
   rc=1
 fi
 [ "${results_rc}" != 0 ] && rc=1
-/usr/bin/python3 scripts/test_summary.py .ws/build/test_results || rc=1
+/usr/bin/python3 scripts/test_summary.py .ws/build/test_results --wall $(( $(date +%s) - started )) \
+  || rc=1
 exit ${rc}

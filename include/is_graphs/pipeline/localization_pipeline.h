@@ -41,7 +41,9 @@ struct PipelineEvent {
   std::string kind;  // "match", "localized", "updated", "rejected", "lost"
   matching::MatchStatus status{matching::MatchStatus::kNone};
   Eigen::Isometry3d bim_T_map{Eigen::Isometry3d::Identity()};
-  int storey{-1};  // a match's A-Graph storey id
+  int storey{-1};                      // a match's A-Graph storey id
+  int hypotheses{0};                   // a match's hypotheses scored
+  std::vector<int> competing_storeys;  // a match's other storeys that fit as well
   std::string message;
 };
 
@@ -67,6 +69,8 @@ class LocalizationPipeline {
   const std::vector<PipelineEvent>& events() const { return events_; }
   /// Every UNIQUE match (events() keeps only changes of the match status), for the evaluation.
   const std::vector<PipelineEvent>& unique_matches() const { return unique_matches_; }
+  /// Every match, whatever its status (the replay's scenario contracts check each one).
+  const std::vector<PipelineEvent>& matches() const { return matches_; }
   sgraph::SGraph Snapshot() const { return builder_.Snapshot(); }
   const sgraph::SGraphBuilder& builder() const { return builder_; }
   const merging::Merger& merger() const { return merger_; }
@@ -88,6 +92,7 @@ class LocalizationPipeline {
   StageTimes times_;
   std::vector<PipelineEvent> events_;
   std::vector<PipelineEvent> unique_matches_;
+  std::vector<PipelineEvent> matches_;
 };
 
 }  // namespace pipeline

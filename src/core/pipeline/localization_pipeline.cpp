@@ -87,6 +87,8 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   e.status = match.status;
   e.bim_T_map = match.bim_T_map;
   e.storey = match.storey;
+  e.hypotheses = match.hypotheses;
+  e.competing_storeys = match.competing_storeys;
   e.message = std::to_string(match.room_pairs.size()) + " room pairs, " +
               std::to_string(match.hypotheses) + " hypotheses, score " +
               std::to_string(match.score);
@@ -97,6 +99,7 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   if (events_.empty() || events_.back().kind != "match" || events_.back().status != match.status)
     events_.push_back(e);
   if (match.status == matching::MatchStatus::kUnique) unique_matches_.push_back(e);
+  matches_.push_back(e);
 
   if (match.status != matching::MatchStatus::kUnique && !merger_.merged()) return result;
   t0 = Clock::now();

@@ -227,6 +227,14 @@ int main(int argc, char** argv) {
                 xi.x(), xi.y(), xi.z() * 180.0 / M_PI, e.message.c_str(), storey.c_str());
   }
   out["events"] = events;
+  nlohmann::json matches = nlohmann::json::array();  // every match: the scenario contracts
+  for (const auto& m : localization.matches())
+    matches.push_back({{"t", m.stamp - first},
+                       {"status", matching::ToString(m.status)},
+                       {"storey", m.storey},
+                       {"hypotheses", m.hypotheses},
+                       {"competing_storeys", m.competing_storeys}});
+  out["matches"] = matches;
   out["unique_matches"] = audit.json();
   out["wrong_matches"] = audit.wrong();
   out["wrong_storey_matches"] = audit.wrong_storeys();
