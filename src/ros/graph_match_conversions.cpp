@@ -65,6 +65,7 @@ is_graphs::GraphMatch ToMsg(const matching::GraphMatch& match) {
   msg.bim_T_map = ToPose(match.bim_T_map);
   msg.storey_id = match.storey;
   msg.competing_storey_ids.assign(match.competing_storeys.begin(), match.competing_storeys.end());
+  msg.hint = match.hint;
   return msg;
 }
 
@@ -92,6 +93,7 @@ matching::GraphMatch FromMsg(const is_graphs::GraphMatch& msg) {
   match.bim_T_map = FromPose(msg.bim_T_map);
   match.storey = msg.storey_id;
   match.competing_storeys.assign(msg.competing_storey_ids.begin(), msg.competing_storey_ids.end());
+  match.hint = msg.hint;
   return match;
 }
 

@@ -3,7 +3,8 @@
 // the work is in is_graphs_core (matching::GraphMatcher). Matching runs on a worker thread that
 // always takes the newest S-Graph, so a slow match never piles up callbacks. Elements of either
 // graph with non-finite values are left out and warned about (matching::CheckSGraph);
-// health on /diagnostics.
+// health on /diagnostics. A pose hint (`initialpose`, `set_pose_hint`), `relocalize` and
+// `set_storey` at run time (localization_services.h, docs/localization_services.md).
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <is_graphs/AGraph.h>
 #include <is_graphs/GraphMatch.h>
@@ -22,6 +23,8 @@
 #include "graph_match_conversions.h"
 #include "graph_match_markers.h"
 #include "is_graphs/matching/graph_matcher.h"
+#include "is_graphs/matching/pose_hint.h"
+#include "localization_services.h"
 #include "param_helpers.h"
 #include "sgraph_conversions.h"
 #include "sgraph_session.h"
@@ -32,6 +35,7 @@ namespace {
 struct MatcherNodeParams {
   matching::MatcherConfig matcher;
   ros_markers::GraphMatchMarkerStyle markers;
+  ros_conversions::HintFrames hint;
 };
 
 MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
@@ -89,6 +93,18 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "deviation_max_angle_deg", c.deviation_max_angle_deg);
   ros_params::Read(pnh, "frame_id", p.markers.frame_id);
   ros_params::Read(pnh, "marker_s_graph_lift", p.markers.s_graph_lift);
+  p.hint.bim = p.markers.frame_id;
+  ros_params::Read(pnh, "map_frame", p.hint.map);
+  ros_params::Read(pnh, "robot_frame", p.hint.robot);
+  ros_params::Read(pnh, "hint_tf_timeout", p.hint.tf_timeout);
+  for (const auto& [name, value] :
+       {std::pair<const char*, const std::string*>{"map_frame", &p.hint.map},
+        {"robot_frame", &p.hint.robot}})
+    if (value->empty())
+      throw ros_params::ParamError("parameter '" + pnh.resolveName(name) + "' must not be empty");
+  if (!(p.hint.tf_timeout >= 0.0 && p.hint.tf_timeout <= 10.0))
+    throw ros_params::ParamError("parameter '" + pnh.resolveName("hint_tf_timeout") +
+                                 "' must be within [0, 10] s");
   if (p.markers.frame_id.empty())
     throw ros_params::ParamError("parameter '" + pnh.resolveName("frame_id") +
                                  "' must not be empty");
@@ -102,7 +118,9 @@ MatcherNodeParams ReadParams(const ros::NodeHandle& pnh) {
 class MatcherNode {
  public:
   MatcherNode(ros::NodeHandle& nh, const MatcherNodeParams& params)
-      : params_(params), matcher_(params.matcher) {
+      : params_(params),
+        matcher_(params.matcher),
+        services_(nh, params.hint, [this](const ros_matcher::Request& r) { Submit(r); }) {
     match_pub_ = nh.advertise<is_graphs::GraphMatch>("graph_match", 1, /*latch=*/true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("graph_match/markers", 1, true);
     a_sub_ = nh.subscribe("a_graph", 1, &MatcherNode::OnAGraph, this);
@@ -130,6 +148,31 @@ class MatcherNode {
     wake_.notify_all();
   }
 
+  void Submit(const ros_matcher::Request& request) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    requests_.push_back(request);
+    wake_.notify_all();
+  }
+
+  /// A request from localization_services.h, on the worker thread.
+  void Apply(const ros_matcher::Request& r) {
+    using Kind = ros_matcher::Request::Kind;
+    if (r.kind == Kind::kHint) {
+      hinted_.Set(r.hint);  // checked by PoseHintFromMsg
+      ROS_INFO("matcher_node: %s: in force", hinted_.Describe().c_str());
+    } else if (r.kind == Kind::kRelocalize) {
+      matcher_.ForgetHistory();
+      hinted_.Clear();
+      ++relocalizations_;
+      ROS_WARN("matcher_node: relocalize: the match and any pose hint forgotten");
+    } else {
+      matcher_.SetStorey(r.storey);
+      ++relocalizations_;
+      ROS_WARN("matcher_node: set_storey: matching on %s; localizing again",
+               r.storey < 0 ? "the whole building" : ("storey '" + r.storey_name + "'").c_str());
+    }
+  }
+
   void OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     last_s_receipt_ = ros::Time::now();
@@ -144,15 +187,22 @@ class MatcherNode {
     for (;;) {
       is_graphs::AGraph::ConstPtr a_msg;
       is_graphs::SGraph::ConstPtr s_msg;
+      std::vector<ros_matcher::Request> requests;
       {
         std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock,
-                   [&] { return stop_ || pending_a_ || (pending_s_ && matcher_.HasAGraph()); });
+        wake_.wait(lock, [&] {
+          return stop_ || pending_a_ || (pending_s_ && matcher_.HasAGraph()) || !requests_.empty();
+        });
         if (stop_) return;
         a_msg.swap(pending_a_);
         if (matcher_.HasAGraph() || a_msg) s_msg.swap(pending_s_);
+        requests.swap(requests_);
       }
       if (a_msg) SetAGraph(*a_msg);
+      for (const auto& r : requests) Apply(r);
+      // A request takes effect at once: the last S-Graph matched again (a copy of the pointer,
+      // as in SetAGraph).
+      if (!s_msg && !requests.empty() && matcher_.HasAGraph()) s_msg = last_s_;
       if (s_msg) MatchAndPublish(*s_msg);
     }
   }
@@ -163,6 +213,11 @@ class MatcherNode {
       ROS_WARN("matcher_node: A-Graph: %s", w.c_str());
     ROS_INFO("matcher_node: A-Graph '%s' with %zu rooms (%zu usable)", msg.building.c_str(),
              a_graph_.rooms.size(), matcher_.ARooms().size());
+    services_.SetBuilding(a_graph_);
+    if (matcher_.OnlyStorey() >= 0) {  // a storey id of the building before
+      ROS_WARN("matcher_node: a new A-Graph: set_storey's restriction dropped");
+      matcher_.SetStorey(-1);
+    }
     a_loaded_ = true;
     // A new building: match the last S-Graph again. (Through a copy of the pointer: matching
     // replaces last_s_, which must not free the message being matched.)
@@ -174,11 +229,18 @@ class MatcherNode {
       ROS_WARN("matcher_node: a new S-Graph (revision %u, %zu keyframes): matching from scratch",
                msg.revision, msg.keyframes.size());
       matcher_.ForgetHistory();
+      if (hinted_.InForce()) ROS_WARN("matcher_node: the pose hint dropped with the old map");
+      hinted_.Clear();  // its robot pose in the map is of the map gone
     }
     last_s_ = boost::make_shared<is_graphs::SGraph>(msg);
     const sgraph::SGraph s_graph = ros_conversions::FromMsg(msg);
-    const matching::GraphMatch match = matcher_.Match(s_graph);
-    for (const auto& w : match.warnings) ROS_WARN_THROTTLE(2.0, "matcher_node: %s", w.c_str());
+    const matching::GraphMatch match = hinted_.Match(matcher_, s_graph);
+    for (const auto& w : match.warnings) {
+      if (w.rfind("pose hint rejected", 0) == 0)
+        ROS_WARN("matcher_node: %s", w.c_str());  // once, never throttled away
+      else
+        ROS_WARN_THROTTLE(2.0, "matcher_node: %s", w.c_str());
+    }
     const auto& stats = matcher_.LastStats();
     ROS_INFO(
         "matcher_node: S-Graph rev %u: %s (%u hypotheses, score %.2f, %zu room pairs), "
@@ -191,11 +253,13 @@ class MatcherNode {
       ++matches_;
       left_out_ += static_cast<long>(match.warnings.size());
       last_status_ = matching::ToString(match.status);
+      last_hint_ = match.hint;
       last_revision_ = msg.revision;
       last_ms_ = stats.milliseconds;
       max_ms_ = std::max(max_ms_, stats.milliseconds);
     }
     is_graphs::GraphMatch out = ros_conversions::ToMsg(match);
+    out.relocalizations = relocalizations_;
     out.header.frame_id = params_.markers.frame_id;
     out.header.stamp = msg.header.stamp.isZero() ? ros::Time::now() : msg.header.stamp;
     match_pub_.publish(out);
@@ -219,6 +283,7 @@ class MatcherNode {
     d.add("matches", matches_);
     d.add("S-Graph elements left out (non-finite, malformed)", left_out_);
     d.add("last status", last_status_);
+    d.add("pose hint", last_hint_.empty() ? std::string("none") : last_hint_);
     d.addf("last match [ms]", "%.1f", last_ms_);
     d.addf("slowest match [ms]", "%.1f", max_ms_);
     if (!last_s_receipt_.isZero())
@@ -226,7 +291,9 @@ class MatcherNode {
   }
 
   MatcherNodeParams params_;
-  matching::GraphMatcher matcher_;  // used by the worker thread only
+  matching::GraphMatcher matcher_;   // used by the worker thread only
+  matching::HintedMatching hinted_;  // the worker's
+  unsigned relocalizations_{0};      // the worker's: graph_match's relocalizations
   agraph::AGraph a_graph_;
   is_graphs::SGraph::ConstPtr last_s_;
   ros::Publisher match_pub_, marker_pub_;
@@ -242,9 +309,12 @@ class MatcherNode {
   ros::Time last_s_receipt_;
   long matches_{0}, left_out_{0};
   std::string last_status_{"none yet"};
+  std::string last_hint_;
+  std::vector<ros_matcher::Request> requests_;  // from services_, for the worker
   unsigned last_revision_{0};
   double last_ms_{0.0}, max_ms_{0.0};
   std::atomic<bool> a_loaded_{false};
+  ros_matcher::LocalizationServices services_;  // after the members its callbacks use
   std::thread worker_;
 };
 

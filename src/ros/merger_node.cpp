@@ -124,6 +124,17 @@ void MergerNode::OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
 void MergerNode::OnMatch(const is_graphs::GraphMatch::ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(mutex_);
   ++matches_;
+  if (hint_ != msg->hint) status_dirty_ = true;
+  hint_ = msg->hint;  // the pose hint, for localization_status
+  if (relocalizations_ && *relocalizations_ != msg->relocalizations) {
+    // matcher_node's relocalize service: the match is forgotten, localize again.
+    ROS_WARN("merger_node: relocalize requested (matcher_node): merge reset");
+    ResetLocked("relocalize requested");
+    carry_.reset();
+    last_bim_T_odom_.reset();
+    pending_match_.reset();
+  }
+  relocalizations_ = msg->relocalizations;
   // A pending UNIQUE match is not replaced by a later non-UNIQUE one.
   if (pending_match_ && pending_match_->status == is_graphs::GraphMatch::UNIQUE &&
       msg->status != is_graphs::GraphMatch::UNIQUE)

@@ -118,6 +118,8 @@ class MergerNode {
   double last_merge_ms_{0.0}, max_merge_ms_{0.0};
   ros::Time last_odom_stamp_;
   ros::Time last_tf_stamp_;
+  std::string hint_;                         // graph_match's pose hint (localization_status)
+  std::optional<uint32_t> relocalizations_;  // graph_match's, last seen
   std::thread worker_;
 };
 

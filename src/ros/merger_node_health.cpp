@@ -166,6 +166,8 @@ void MergerNode::PublishStatus() {
     msg.seconds_to_localize = state_.seconds_to_localize();
     msg.distance_to_localize = state_.distance_to_localize();
     msg.message = state_.message();
+    msg.hint = hint_;
+    msg.hint_in_force = hint_.rfind("in force", 0) == 0;
     if (state_.has_pose()) {
       Eigen::Matrix<double, 6, 6> covariance = merging::RobotPoseCovariance(
           covariance_, bim_T_map_, Eigen::Vector3d::Zero(), params_.merger);

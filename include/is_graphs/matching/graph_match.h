@@ -66,6 +66,9 @@ struct GraphMatch {
   std::vector<HypothesisSummary> alternatives;  // the other hypotheses of the best cluster
   std::vector<int> competing_storeys;           // CompetingStoreys(*this), set by the matcher
   std::vector<std::string> warnings;            // bad input found in either graph
+  // What a pose hint did ("" without one; HintedMatching, pose_hint.h): "in force: ...",
+  // "in force, agrees: ..." or "rejected: why".
+  std::string hint;
 };
 
 /// The storeys of `match`'s competing hypotheses other than its own, sorted, distinct: not empty

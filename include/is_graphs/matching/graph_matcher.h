@@ -16,6 +16,7 @@
 #include "is_graphs/matching/graph_match.h"
 #include "is_graphs/matching/hypothesis_scoring.h"
 #include "is_graphs/matching/matcher_config.h"
+#include "is_graphs/matching/pose_hint.h"
 #include "is_graphs/matching/room_descriptor.h"
 #include "is_graphs/matching/sight_evidence.h"
 #include "is_graphs/matching/surface_evidence.h"
@@ -86,6 +87,21 @@ class GraphMatcher {
     last_checked_.reset();
     if (doubter_) doubter_->ForgetHistory();
   }
+
+  /// Leaves out every hypothesis (rooms', doubter's, proposals') outside `gate` until called
+  /// with null; `gate` must outlive that (HintedMatching, pose_hint.h).
+  void SetGate(const HintGate* gate) {
+    gate_ = gate;
+    if (doubter_) doubter_->SetGate(gate);
+  }
+  /// Leaves out every hypothesis on another storey than `storey` (an A-Graph storey id; -1:
+  /// any), as a gate does; forgets the history.
+  void SetStorey(int storey) {
+    only_storey_ = storey;
+    ForgetHistory();
+    if (doubter_) doubter_->SetStorey(storey);
+  }
+  int OnlyStorey() const { return only_storey_; }
 
   const MatchStats& LastStats() const { return stats_; }
   const MatcherConfig& config() const { return config_; }
@@ -211,6 +227,11 @@ class GraphMatcher {
     return storeys_walked_.empty() || std::find(storeys_walked_.begin(), storeys_walked_.end(),
                                                 storey) != storeys_walked_.end();
   }
+  bool InGate(const Pose2& pose, int storey) const {
+    return (only_storey_ < 0 || storey == only_storey_) && (!gate_ || gate_->Inside(pose, storey));
+  }
+  const HintGate* gate_{nullptr};  // a pose hint's gate (SetGate), null: none
+  int only_storey_{-1};            // SetStorey
   MatchStats stats_;
   /// The same matcher with doubt_centre_tolerance (null: no doubt). Owning it makes a
   /// GraphMatcher move-only: one per thread, as said above.

@@ -7,6 +7,7 @@
 
 #include "is_graphs/agraph/agraph.h"
 #include "is_graphs/matching/graph_matcher.h"
+#include "is_graphs/matching/pose_hint.h"
 #include "is_graphs/merging/merger.h"
 #include "is_graphs/sgraph/sgraph_builder.h"
 
@@ -64,6 +65,11 @@ class LocalizationPipeline {
   sgraph::SGraphBuilder::ScanResult AddScan(const sgraph::Scan& scan,
                                             const Eigen::Isometry3d& base_T_sensor);
 
+  /// A pose hint (matching::HintedMatching), held until replaced, rejected or the S-Graph
+  /// restarts; "" or why it is unusable (nothing changes then). An event "hint" records it.
+  std::string SetPoseHint(double stamp, const matching::PoseHint& hint);
+  bool HintInForce() const { return hinted_.InForce(); }
+
   bool localized() const { return merger_.merged(); }
   const StageTimes& times() const { return times_; }
   const std::vector<PipelineEvent>& events() const { return events_; }
@@ -85,6 +91,7 @@ class LocalizationPipeline {
   PipelineConfig config_;
   sgraph::SGraphBuilder builder_;
   matching::GraphMatcher matcher_;
+  matching::HintedMatching hinted_;
   merging::Merger merger_;
   Eigen::Isometry3d bim_T_odom_{Eigen::Isometry3d::Identity()};
   merging::OdometryAnchor anchor_;  // the published pose: anchor_.Pose(odom_T_base)

@@ -564,7 +564,10 @@ std::vector<Hypothesis> GraphMatcher::Hypothesize(const std::vector<RoomDescript
     if (order.empty()) order = GrowthOrder(s_rooms, s_rooms[seed->s_room].centre);
     add(Grow(seed->pose, seed, s_rooms, candidates, index, order, affinity_floor, &abandoned));
   }
-
+  if (gate_ || only_storey_ >= 0)  // a pose hint's gate, SetStorey: the others left out
+    hypotheses.erase(std::remove_if(hypotheses.begin(), hypotheses.end(),
+                                    [&](const Hypothesis& h) { return !InGate(h.pose, h.storey); }),
+                     hypotheses.end());
   return hypotheses;
 }
 

@@ -54,10 +54,11 @@ GraphMatcher::ProposalDecision GraphMatcher::Propose(const sgraph::SGraph& graph
   std::vector<MotionProposal> proposals = ProposeMotions(
       corners, a_corners_, config_.angle_tolerance_deg, config_.proposal_max_candidates, &too_many);
   if (too_many) proposals.clear();
-  proposals.erase(
-      std::remove_if(proposals.begin(), proposals.end(),
-                     [&](const MotionProposal& p) { return !StoreyWalkable(p.storey); }),
-      proposals.end());
+  proposals.erase(std::remove_if(proposals.begin(), proposals.end(),
+                                 [&](const MotionProposal& p) {
+                                   return !StoreyWalkable(p.storey) || !InGate(p.pose, p.storey);
+                                 }),
+                  proposals.end());
   for (const auto& h : hypotheses)
     if (!h.members.empty()) proposals.push_back({h.pose, h.storey, 0});
   // What is seen fits too many places to weigh them all: undecided (or, to check the room

@@ -37,12 +37,23 @@ std::string LocalizationPipeline::SetAGraph(const agraph::AGraph& graph) {
   return "";
 }
 
+std::string LocalizationPipeline::SetPoseHint(double stamp, const matching::PoseHint& hint) {
+  const std::string error = hinted_.Set(hint);
+  PipelineEvent e;
+  e.stamp = stamp;
+  e.kind = "hint";
+  e.message = error.empty() ? hinted_.Describe() : "pose hint not used: " + error;
+  events_.push_back(e);
+  return error;
+}
+
 std::optional<Eigen::Isometry3d> LocalizationPipeline::AddOdometry(
     double stamp, const Eigen::Isometry3d& odom_T_base) {
   const auto r = builder_.AddOdometry(stamp, odom_T_base);
   if (r.reset) {
     merger_.Reset();
     matcher_.ForgetHistory();
+    hinted_.Clear();  // its robot pose in M is of the map gone
   }
   if (!r.accepted || !merger_.merged()) return std::nullopt;
   return anchor_.Pose(r.odom_T_base);  // the reading as the S-Graph uses it (guard's bridge)
@@ -57,6 +68,7 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   if (result.restarted) {  // track lost: the map the merge was built on is gone
     merger_.Reset();
     matcher_.ForgetHistory();
+    hinted_.Clear();
     bim_T_odom_ = bim_T_map_ = Eigen::Isometry3d::Identity();
     anchor_ = {};
     PipelineEvent e;
@@ -78,7 +90,7 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   if (!matcher_.HasAGraph()) return result;
 
   t0 = Clock::now();
-  const matching::GraphMatch match = matcher_.Match(graph);
+  const matching::GraphMatch match = hinted_.Match(matcher_, graph);
   times_.matching.push_back(MsSince(t0));
   PipelineEvent e;
   e.stamp = scan.stamp;
@@ -95,6 +107,12 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   if (!match.competing_storeys.empty()) {
     e.message += ", also fits storey";
     for (int s : match.competing_storeys) e.message += " " + std::to_string(s);
+  }
+  if (match.hint.rfind("rejected", 0) == 0) {
+    PipelineEvent rejected = e;
+    rejected.kind = "hint_rejected";
+    rejected.message = match.hint;
+    events_.push_back(rejected);
   }
   if (events_.empty() || events_.back().kind != "match" || events_.back().status != match.status)
     events_.push_back(e);

@@ -16,6 +16,9 @@
 //                   [--explain]  (the S-rooms against the BIM under the true motion)
 //                   [--cloud-layout auto|velodyne|ouster|hesai|robosense|xyzi]  (as
 //                                 sgraph_node's cloud_layout; default auto)
+//                   [--hint T,X,Y,YAW_DEG,SIGMA_XY,SIGMA_YAW_DEG]  (a pose hint, as rviz's
+//                                 "2D Pose Estimate": the robot at (X, Y, YAW) in bim, T s after
+//                                 the bag's first message; docs/localization_services.md)
 //                   [--deviations FILE.json]  (issue 21: each wall as built against the plan
 //                                 under the final merge, deviation_report.h; exit 3 and no file
 //                                 when the bag never localized)
@@ -27,6 +30,8 @@
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 #include <string>
 
 #include "../lidar_conversions.h"
@@ -48,7 +53,8 @@ using bag_replay::WriteTum;
 
 int Usage() {
   std::cerr << "usage: replay_pipeline BAG --building FILE [--storey S] [--duration S] "
-               "[--out-prefix PREFIX] [--explain] [--cloud-layout L] [--deviations FILE]\n";
+               "[--out-prefix PREFIX] [--explain] [--cloud-layout L] [--deviations FILE] "
+               "[--hint T,X,Y,YAW_DEG,SIGMA_XY,SIGMA_YAW_DEG]\n";
   return 2;
 }
 
@@ -59,6 +65,29 @@ nlohmann::json Stats(const std::vector<double>& v) {
           {"max_ms", Percentile(v, 1.0)}};
 }
 
+/// --hint T,X,Y,YAW_DEG,SIGMA_XY,SIGMA_YAW_DEG: (T, hint) or false when malformed.
+bool ParseHint(const std::string& text, double* t, matching::PoseHint* hint) {
+  std::vector<double> v;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    try {
+      size_t used = 0;
+      v.push_back(std::stod(item, &used));
+      if (used != item.size()) return false;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+  if (v.size() != 6) return false;
+  constexpr double kDeg = M_PI / 180.0;
+  *t = v[0];
+  hint->bim_T_base = {v[3] * kDeg, Eigen::Vector2d(v[1], v[2])};
+  hint->covariance =
+      Eigen::Vector3d(v[4] * v[4], v[4] * v[4], v[5] * kDeg * v[5] * kDeg).asDiagonal();
+  hint->description = "--hint " + text;
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -66,6 +95,8 @@ int main(int argc, char** argv) {
   std::string bag_path = argv[1], building_path, storey, prefix, deviations_path;
   double max_duration = -1.0;
   bool explain = false;
+  std::optional<double> hint_at;  // s after the first message
+  matching::PoseHint hint;
   ros_conversions::LidarCloudConfig cloud_config;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -82,7 +113,14 @@ int main(int argc, char** argv) {
       max_duration = std::stod(argv[++i]);
     else if (a == "--out-prefix")
       prefix = argv[++i];
-    else if (a == "--deviations")
+    else if (a == "--hint") {
+      double at = 0.0;
+      if (!ParseHint(argv[++i], &at, &hint)) {
+        std::cerr << "replay_pipeline: --hint must be T,X,Y,YAW_DEG,SIGMA_XY,SIGMA_YAW_DEG\n";
+        return 2;
+      }
+      hint_at = at;
+    } else if (a == "--deviations")
       deviations_path = argv[++i];
     else if (a == "--cloud-layout") {
       if (!bag_replay::ParseCloudLayout(argv[++i], &cloud_config)) {
@@ -147,6 +185,7 @@ int main(int argc, char** argv) {
   std::vector<sgraph::StampedPose> truths;
   bag_replay::MatchAudit audit(building);
   bool ever_merged = false;
+  double hint_given = -1.0;
   for (const auto& m : rosbag::View(bag, rosbag::TopicQuery(bag_replay::SensorTopics()))) {
     const double t = m.getTime().toSec();
     if (first < 0.0) first = t;
@@ -159,6 +198,13 @@ int main(int argc, char** argv) {
         walked += (odom_T_base.translation() - last_position).head<2>().norm();
       last_position = odom_T_base.translation();
       if (odom_file) WriteTum(odom_file, stamp, odom_T_base);
+      if (hint_at && stamp - first >= *hint_at && hint_given < 0.0) {
+        // The robot's pose in M at this instant, as sgraph_node's tf map -> odom -> base_link.
+        hint.map_T_base = matching::PlanarPose(localization.builder().MapToOdom() * odom_T_base);
+        hint_given = stamp;
+        if (const auto e = localization.SetPoseHint(stamp, hint); !e.empty())
+          std::cerr << "replay_pipeline: pose hint not used: " << e << "\n";
+      }
       const auto pose = localization.AddOdometry(stamp, odom_T_base);
       if (online_file)
         WriteTum(online_file, stamp, localization.builder().MapToOdom() * odom_T_base);
@@ -227,6 +273,15 @@ int main(int argc, char** argv) {
                 xi.x(), xi.y(), xi.z() * 180.0 / M_PI, e.message.c_str(), storey.c_str());
   }
   out["events"] = events;
+  if (hint_at) {
+    bool rejected = false;
+    for (const auto& e : localization.events()) rejected = rejected || e.kind == "hint_rejected";
+    out["hint"] = {{"t", hint_given < 0.0 ? -1.0 : hint_given - first},
+                   {"rejected", rejected},
+                   {"in_force_at_end", localization.HintInForce()},
+                   {"seconds_to_localize_after_hint",
+                    localized_at < 0.0 || hint_given < 0.0 ? -1.0 : localized_at - hint_given}};
+  }
   nlohmann::json matches = nlohmann::json::array();  // every match: the scenario contracts
   for (const auto& m : localization.matches())
     matches.push_back({{"t", m.stamp - first},
