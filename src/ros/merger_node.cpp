@@ -122,26 +122,34 @@ void MergerNode::OnSGraph(const is_graphs::SGraph::ConstPtr& msg) {
 }
 
 void MergerNode::OnMatch(const is_graphs::GraphMatch::ConstPtr& msg) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  ++matches_;
-  if (hint_ != msg->hint) status_dirty_ = true;
-  hint_ = msg->hint;  // the pose hint, for localization_status
-  if (relocalizations_ && *relocalizations_ != msg->relocalizations) {
-    // matcher_node's relocalize service: the match is forgotten, localize again.
-    ROS_WARN("merger_node: relocalize requested (matcher_node): merge reset");
-    ResetLocked("relocalize requested");
-    carry_.reset();
-    last_bim_T_odom_.reset();
-    pending_match_.reset();
+  bool publish = false;  // localization_status at once: a relocalize, a hint taken or dropped
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++matches_;
+    const auto in_force = [](const std::string& h) { return h.rfind("in force", 0) == 0; };
+    publish = in_force(hint_) != in_force(msg->hint) ||
+              (hint_ != msg->hint && msg->hint.rfind("rejected", 0) == 0);
+    status_dirty_ = status_dirty_ || hint_ != msg->hint;
+    hint_ = msg->hint;  // the pose hint, for localization_status
+    if (relocalizations_ && *relocalizations_ != msg->relocalizations) {
+      // matcher_node's relocalize or set_storey service: the match is forgotten, localize again.
+      ROS_WARN("merger_node: relocalize requested (matcher_node): merge reset");
+      ResetLocked("relocalize requested");
+      carry_.reset();
+      last_bim_T_odom_.reset();
+      pending_match_.reset();
+      publish = true;
+    }
+    relocalizations_ = msg->relocalizations;
+    // A pending UNIQUE match is not replaced by a later non-UNIQUE one.
+    if (!(pending_match_ && pending_match_->status == is_graphs::GraphMatch::UNIQUE &&
+          msg->status != is_graphs::GraphMatch::UNIQUE)) {
+      pending_match_ = msg;
+      pending_match_since_ = ros::WallTime::now();
+      wake_.notify_all();
+    }
   }
-  relocalizations_ = msg->relocalizations;
-  // A pending UNIQUE match is not replaced by a later non-UNIQUE one.
-  if (pending_match_ && pending_match_->status == is_graphs::GraphMatch::UNIQUE &&
-      msg->status != is_graphs::GraphMatch::UNIQUE)
-    return;
-  pending_match_ = msg;
-  pending_match_since_ = ros::WallTime::now();
-  wake_.notify_all();
+  if (publish) PublishStatus();
 }
 
 void MergerNode::Work() {

@@ -176,10 +176,12 @@ TEST(GraphMatchConversions, RoundTripKeepsPairsAndDeviations) {
   a.hypotheses = 1;
   a.storey = 3;
   a.competing_storeys = {0, 2};
+  a.hint = "in force: pose hint (1.00, 2.00, 3.0 deg)";
   const matching::GraphMatch b = ros_conversions::FromMsg(ros_conversions::ToMsg(a));
   EXPECT_EQ(b.status, a.status);
   EXPECT_EQ(b.storey, 3);
   EXPECT_EQ(b.competing_storeys, (std::vector<int>{0, 2}));
+  EXPECT_EQ(b.hint, a.hint);
   EXPECT_EQ(b.s_graph_revision, 7u);
   ASSERT_EQ(b.surface_pairs.size(), 2u);
   ASSERT_EQ(b.doorway_pairs.size(), 1u);
