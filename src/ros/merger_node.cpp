@@ -131,8 +131,10 @@ void MergerNode::OnMatch(const is_graphs::GraphMatch::ConstPtr& msg) {
               (hint_ != msg->hint && msg->hint.rfind("rejected", 0) == 0);
     status_dirty_ = status_dirty_ || hint_ != msg->hint;
     hint_ = msg->hint;  // the pose hint, for localization_status
-    if (relocalizations_ && *relocalizations_ != msg->relocalizations) {
+    if (relocalizations_ && msg->relocalizations > *relocalizations_) {
       // matcher_node's relocalize or set_storey service: the match is forgotten, localize again.
+      // (Only a count that grows: a respawned matcher_node counts from 0 again, and keeps the
+      // merge as before.)
       ROS_WARN("merger_node: relocalize requested (matcher_node): merge reset");
       ResetLocked("relocalize requested");
       carry_.reset();
