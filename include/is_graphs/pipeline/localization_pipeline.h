@@ -66,7 +66,8 @@ class LocalizationPipeline {
                                             const Eigen::Isometry3d& base_T_sensor);
 
   /// A pose hint (matching::HintedMatching), held until replaced, rejected or the S-Graph
-  /// restarts; "" or why it is unusable (nothing changes then). An event "hint" records it.
+  /// restarts; "" or why it is unusable (nothing changes then). An event "hint" records it; the
+  /// last S-Graph is matched again at once (as matcher_node does).
   std::string SetPoseHint(double stamp, const matching::PoseHint& hint);
   bool HintInForce() const { return hinted_.InForce(); }
 
@@ -87,6 +88,8 @@ class LocalizationPipeline {
 
  private:
   void Record(double stamp, unsigned revision, const merging::MergeOutput& out);
+  /// Matches `graph` (with the pose hint) and merges a UNIQUE match, or the revision when merged.
+  void MatchAndMerge(double stamp, const sgraph::SGraph& graph);
 
   PipelineConfig config_;
   sgraph::SGraphBuilder builder_;

@@ -44,6 +44,9 @@ std::string LocalizationPipeline::SetPoseHint(double stamp, const matching::Pose
   e.kind = "hint";
   e.message = error.empty() ? hinted_.Describe() : "pose hint not used: " + error;
   events_.push_back(e);
+  // In force at once, as matcher_node matches its last S-Graph again on a hint.
+  if (error.empty() && matcher_.HasAGraph() && builder_.num_keyframes() > 0)
+    MatchAndMerge(stamp, builder_.Snapshot());
   return error;
 }
 
@@ -87,13 +90,16 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   times_.optimization.push_back(MsSince(t0));
   times_.optimization_keyframes.push_back(summary.num_keyframes);
   const sgraph::SGraph graph = builder_.Snapshot();
-  if (!matcher_.HasAGraph()) return result;
+  if (matcher_.HasAGraph()) MatchAndMerge(scan.stamp, graph);
+  return result;
+}
 
-  t0 = Clock::now();
+void LocalizationPipeline::MatchAndMerge(double stamp, const sgraph::SGraph& graph) {
+  auto t0 = Clock::now();
   const matching::GraphMatch match = hinted_.Match(matcher_, graph);
   times_.matching.push_back(MsSince(t0));
   PipelineEvent e;
-  e.stamp = scan.stamp;
+  e.stamp = stamp;
   e.revision = graph.revision;
   e.kind = "match";
   e.status = match.status;
@@ -119,14 +125,13 @@ sgraph::SGraphBuilder::ScanResult LocalizationPipeline::AddScan(
   if (match.status == matching::MatchStatus::kUnique) unique_matches_.push_back(e);
   matches_.push_back(e);
 
-  if (match.status != matching::MatchStatus::kUnique && !merger_.merged()) return result;
+  if (match.status != matching::MatchStatus::kUnique && !merger_.merged()) return;
   t0 = Clock::now();
   const merging::MergeOutput out = match.status == matching::MatchStatus::kUnique
                                        ? merger_.OnMatch(match, graph)
                                        : merger_.OnSGraph(graph);
   times_.merging.push_back(MsSince(t0));
-  Record(scan.stamp, graph.revision, out);
-  return result;
+  Record(stamp, graph.revision, out);
 }
 
 void LocalizationPipeline::Record(double stamp, unsigned revision,
