@@ -72,6 +72,10 @@ BimMapServer::BimMapServer(ros::NodeHandle& nh, const agraph::AGraph& graph,
       continue;
     }
     grids_.emplace_back(std::move(grid).value());
+    const Eigen::Vector2i snapped = places_.SnapToFree(static_cast<int>(s), *grids_.back(), graph);
+    if (snapped[1] > 0)
+      ROS_WARN("agraph_node: storey '%s': %d locate goals have no free cell near them",
+               graph.storeys[s].name.c_str(), snapped[1]);
     if (first < 0 || graph.storeys[s].elevation < graph.storeys[first].elevation) first = s;
   }
   if (!params.storey.empty()) {
@@ -97,6 +101,7 @@ void BimMapServer::Publish(int storey) {
   const auto msg = ToMsg(*grids_[storey], params_.frame_id);
   map_pub_.publish(msg);
   as_built_pub_.publish(msg);  // as planned until the storey's deviations arrive
+  as_built_cells_ = grids_[storey]->cells;
   ROS_INFO("agraph_node: bim_map: storey '%s', %u x %u cells of %.3f m",
            graph_.storeys[storey].name.c_str(), msg.info.width, msg.info.height,
            msg.info.resolution);
@@ -119,6 +124,8 @@ void BimMapServer::OnDeviations(const is_graphs::WallDeviations::ConstPtr& msg) 
     ROS_WARN_THROTTLE(10.0, "agraph_node: bim_map/as_built: %s", grid.error().c_str());
     return;
   }
+  if (grid.value().cells == as_built_cells_) return;  // unchanged: no new 100s of kB
+  as_built_cells_ = grid.value().cells;
   as_built_pub_.publish(ToMsg(grid.value(), params_.frame_id));
 }
 

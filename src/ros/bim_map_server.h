@@ -53,6 +53,7 @@ class BimMapServer {
   std::vector<std::optional<navigation::OccupancyGrid>> grids_;  // per storey; none: no map
   navigation::PlaceIndex places_;
   int storey_{-1};
+  std::vector<std::int8_t> as_built_cells_;  // as last published
   ros::Publisher map_pub_, as_built_pub_;
   ros::Subscriber match_sub_, deviations_sub_;
   ros::ServiceServer locate_srv_;

@@ -16,6 +16,7 @@ struct NavBuilding {
   std::string name;
   const agraph::AGraph* graph;
   const geometry::TriangleMesh* mesh;  // nullptr when there is none
+  bool project;                        // bim/ (else ../shared/bim)
 };
 
 inline std::vector<NavBuilding> NavigationBuildings() {
@@ -40,7 +41,8 @@ inline std::vector<NavBuilding> NavigationBuildings() {
       auto loaded = geometry::LoadObj(g->mesh);
       if (loaded.ok()) mesh = std::make_unique<geometry::TriangleMesh>(std::move(loaded).value());
     }
-    out.push_back({f.filename().string(), g, mesh.get()});
+    const bool project = f.parent_path() == std::filesystem::path(IS_GRAPHS_SOURCE_DIR) / "bim";
+    out.push_back({f.filename().string(), g, mesh.get(), project});
   }
   return out;
 }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <set>
 
+#include "is_graphs/agraph/agraph_queries.h"
+#include "is_graphs/navigation/occupancy_grid.h"
 #include "is_graphs/navigation/places.h"
 #include "navigation_test_helpers.h"
 
@@ -150,6 +152,44 @@ TEST(NavigationPlaces, AnUnknownNameNamesTheClosestOnes) {
   found = index.Locate("03ISH2Axx0AakK$DuPbqG3");  // a GlobalId one character off a door's
   ASSERT_FALSE(found.ok());
   EXPECT_NE(found.error().find("03ISH2Axx0AakK$DuPbqG2"), std::string::npos) << found.error();
+}
+
+TEST(NavigationPlaces, SnappedGoalsLieOnFreeCellsOfTheStoreysMap) {
+  const auto buildings = NavigationBuildings();
+  if (buildings.empty()) GTEST_SKIP() << "no building converts here (make setup)";
+  int moved = 0, stuck = 0, rooms = 0, places = 0, not_free = 0;
+  for (const auto& b : buildings) {
+    PlaceIndex index(*b.graph, PlaceConfig{});
+    for (size_t s = 0; s < b.graph->storeys.size(); ++s) {
+      const auto grid = BuildStoreyGrid(agraph::SelectStorey(*b.graph, static_cast<int>(s)).value(),
+                                        b.mesh, GridConfig{});
+      if (!grid.ok()) continue;
+      const Eigen::Vector2i counts = index.SnapToFree(static_cast<int>(s), grid.value(), *b.graph);
+      moved += counts[0], stuck += counts[1];
+      for (const auto& p : index.places()) {
+        if (p.storey != static_cast<int>(s)) continue;
+        ++places;
+        const auto c = grid.value().CellOf(p.position.head<2>());
+        const bool free = grid.value().Contains(c.x(), c.y()) &&
+                          grid.value().At(c.x(), c.y()) == OccupancyGrid::kFree;
+        not_free += !free;
+        if (!free && p.kind != Place::Kind::kRoom)
+          std::printf("[ locate   ] %s %s %s: no free cell\n", b.name.c_str(), ToString(p.kind),
+                      p.name.c_str());
+        if (p.kind != Place::Kind::kRoom) continue;
+        ++rooms;
+        // A real IFC may fill a room at the robot's height (duplex's R301 under its roof).
+        if (!free)
+          std::printf("[ locate   ] %s room %s: no free cell\n", b.name.c_str(), p.name.c_str());
+        EXPECT_TRUE(free || !b.project) << b.name << " room " << p.name;
+        EXPECT_GT(SignedDistanceToPolygon(b.graph->rooms[p.id].polygon, p.position.head<2>()), 0.0)
+            << b.name << " room " << p.name;
+      }
+    }
+  }
+  std::printf("[ locate   ] %d goals (%d rooms): %d moved onto a free cell, %d not free\n", places,
+              rooms, moved, not_free);
+  EXPECT_EQ(not_free, stuck);
 }
 
 TEST(NavigationPlaces, FarthestFromEdgesOfAnLShape) {

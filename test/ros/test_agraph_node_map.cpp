@@ -2,12 +2,14 @@
 // office, `bim_map/as_built` after a `deviations` message, the `locate` service, bad parameters.
 #include <gtest/gtest.h>
 #include <is_graphs/AGraph.h>
+#include <is_graphs/GraphMatch.h>
 #include <is_graphs/Locate.h>
 #include <is_graphs/WallDeviations.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
 
 #include <chrono>
+#include <mutex>
 
 #include "../../src/ros/agraph_conversions.h"
 #include "is_graphs/navigation/occupancy_grid.h"
@@ -124,6 +126,7 @@ TEST(AGraphNodeMap, LocateRoomsDoorsAndBadNames) {
   EXPECT_EQ(call.response.kind, "room");
   EXPECT_EQ(call.response.storey_name, "Ground floor");
   EXPECT_LT(ms, 50.0) << "a locate round trip";
+  std::printf("[ locate   ] round trip %.2f ms\n", ms);
   const auto graph_msg = Wait<is_graphs::AGraph>("a_graph", 5.0);
   const agraph::AGraph g = ros_conversions::FromMsg(*graph_msg);
   for (const auto& r : g.rooms) {
@@ -154,6 +157,46 @@ TEST(AGraphNodeMap, LocateRoomsDoorsAndBadNames) {
   EXPECT_FALSE(storey.response.success);
   EXPECT_NE(storey.response.message.find("Ground floor"), std::string::npos)
       << storey.response.message;
+}
+
+TEST(AGraphNodeMap, FollowsTheStoreyOfAUniqueMatchOnThisAGraph) {
+  const auto graph = Wait<is_graphs::AGraph>("tower/a_graph", 180.0);
+  ASSERT_TRUE(graph);
+  ASSERT_EQ(graph->storeys.size(), 3u);
+  ros::NodeHandle nh;
+  nav_msgs::OccupancyGrid::ConstPtr latest;
+  std::mutex mutex;
+  ros::Subscriber sub = nh.subscribe<nav_msgs::OccupancyGrid>(
+      "tower/bim_map", 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        latest = m;
+      });
+  const auto elevation = [&] {
+    std::lock_guard<std::mutex> lock(mutex);
+    return latest ? latest->info.origin.position.z : -1e9;
+  };
+  for (int i = 0; i < 100 && elevation() == -1e9; ++i) ros::Duration(0.1).sleep();
+  EXPECT_DOUBLE_EQ(elevation(), graph->storeys[0].elevation) << "first: the lowest storey";
+
+  ros::Publisher pub = nh.advertise<is_graphs::GraphMatch>("tower/graph_match", 1, true);
+  is_graphs::GraphMatch match;
+  match.status = is_graphs::GraphMatch::UNIQUE;
+  match.storey_id = 2;
+  match.a_graph_sha256 = "another building";
+  pub.publish(match);
+  ros::Duration(1.5).sleep();
+  EXPECT_DOUBLE_EQ(elevation(), graph->storeys[0].elevation) << "a match on another A-Graph";
+  match.a_graph_sha256 = graph->source_sha256;
+  match.status = is_graphs::GraphMatch::AMBIGUOUS;
+  pub.publish(match);
+  ros::Duration(1.5).sleep();
+  EXPECT_DOUBLE_EQ(elevation(), graph->storeys[0].elevation) << "an ambiguous match";
+  match.status = is_graphs::GraphMatch::UNIQUE;
+  pub.publish(match);
+  for (int i = 0; i < 100 && elevation() != graph->storeys[2].elevation; ++i)
+    ros::Duration(0.1).sleep();
+  EXPECT_DOUBLE_EQ(elevation(), graph->storeys[2].elevation) << "the matched storey";
+  EXPECT_GT(graph->storeys[2].elevation, graph->storeys[0].elevation);
 }
 
 std::pair<int, std::string> RunAgraphNode(const std::string& args) {

@@ -6,6 +6,7 @@
 
 #include "is_graphs/agraph/agraph.h"
 #include "is_graphs/common/result.h"
+#include "is_graphs/navigation/occupancy_grid.h"
 
 namespace is_graphs {
 namespace navigation {
@@ -33,6 +34,7 @@ struct Place {
   std::string storey_name;
   Eigen::Vector3d position{Eigen::Vector3d::Zero()};
   double yaw{0.0};
+  Eigen::Vector2d faced{Eigen::Vector2d::Zero()};  // a door's or wall's point the yaw faces
 };
 
 /// "room", "door", "wall".
@@ -58,6 +60,13 @@ class PlaceIndex {
   /// ambiguous, all are returned. None: an error naming the closest names; an unknown storey:
   /// an error naming the storeys.
   Result<std::vector<Place>> Locate(const std::string& query, const std::string& storey = "") const;
+
+  /// Moves each place of storey `storey` (of the `graph` given to the constructor) whose cell
+  /// of `grid` (that storey's map) is not free to the nearest free cell within `radius` m, inside
+  /// its room (a room) or inside a room of the storey (a door, a wall: then facing what it
+  /// faced). Returns how many moved and how many found no free cell (left where they were).
+  Eigen::Vector2i SnapToFree(int storey, const OccupancyGrid& grid, const agraph::AGraph& graph,
+                             double radius = 1.5);
 
   const std::vector<Place>& places() const { return places_; }
 

@@ -80,6 +80,7 @@ Place DoorPlace(const agraph::AGraph& graph, const agraph::Doorway& d, const Pla
     for (const auto& q : candidates)
       if (!found && InsideRoom(graph, room, q)) chosen = q, found = true;
   place.position.head<2>() = chosen;
+  place.faced = door;
   place.yaw = Yaw(door - chosen);
   return place;
 }
@@ -95,12 +96,13 @@ Place WallPlace(const agraph::AGraph& graph, const agraph::Wall& w, const PlaceC
       break;
     }
   if (face < 0) {
-    place.position.head<2>() = w.center.head<2>();
+    place.position.head<2>() = place.faced = w.center.head<2>();
     return place;
   }
   const auto& s = graph.surfaces[face];
   const Eigen::Vector2d n = s.plane.normal.head<2>().normalized();  // out of the wall
-  place.position.head<2>() = 0.5 * (s.start + s.end) + c.wall_standoff * n;
+  place.faced = 0.5 * (s.start + s.end);
+  place.position.head<2>() = place.faced + c.wall_standoff * n;
   place.yaw = Yaw(-n);
   return place;
 }
