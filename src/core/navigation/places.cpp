@@ -9,6 +9,7 @@
 #include <set>
 
 #include "is_graphs/agraph/agraph_queries.h"
+#include "is_graphs/sim/room_geometry.h"
 
 namespace is_graphs {
 namespace navigation {
@@ -129,20 +130,8 @@ std::string PlaceConfig::Validate() const {
 }
 
 double SignedDistanceToPolygon(const Polygon& polygon, const Eigen::Vector2d& p) {
-  bool inside = false;
-  double best = std::numeric_limits<double>::infinity();
-  for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[j];
-    if ((a.y() > p.y()) != (b.y() > p.y()) &&
-        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x())
-      inside = !inside;
-    const Eigen::Vector2d ab = b - a;
-    const double t =
-        ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-    best = std::min(best, (a + t * ab - p).norm());
-  }
-  return polygon.empty() ? -best : (inside ? best : -best);
+  const double d = sim::DistanceToPolygonEdges(polygon, p);
+  return sim::PointInPolygon(polygon, p) ? d : -d;
 }
 
 Eigen::Vector2d FarthestFromEdges(const Polygon& polygon, double precision, double* distance) {
