@@ -5,7 +5,7 @@ SHELL := /bin/bash
 export PATH := /usr/bin:/bin:/usr/sbin:/sbin:$(PATH)
 export ROS_HOME ?= $(CURDIR)/.ws/ros_home
 
-.PHONY: all setup build demo report test platforms screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching bench-long evaluate clean format
+.PHONY: all setup build demo map report test platforms screenshot bench-conversion buildings bags bags-short bench-bags bench bench-sgraph bench-matching bench-long evaluate clean format
 
 all: build
 
@@ -17,6 +17,14 @@ build: setup
 
 demo: build  ## BIM=path/to/building.ifc to load another building
 	@bash scripts/demo.sh
+
+# The BIM as navigation maps for map_server (move_base, nav2): BIM=building.ifc (or .agraph.json),
+# STOREY= one storey by name or index (default: every storey), MAP_DIR= (default .ws/maps),
+# RESOLUTION= m per cell (0.05). Writes MAP_DIR/<file>_<storey>.yaml + .pgm (docs/navigation.md).
+map: build
+	@test -n "$(BIM)" || { echo "make map: give BIM=path/to/building.ifc [STOREY=name]" >&2; exit 1; }
+	@.ws/devel/lib/is_graphs/bim_map "$(BIM)" -o "$${MAP_DIR:-.ws/maps}" \
+	  $(if $(STOREY),--storey "$(STOREY)") $(if $(RESOLUTION),--resolution $(RESOLUTION))
 
 # As built against as planned (issue 21): .ws/report/<name>/ deviations.csv, deviations.bcf,
 # plan.png. SCENARIO=bags/X.yaml (default D4), or BAG=own.bag BIM=building.ifc [STOREY=..].

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Counts the test cases in catkin's JUnit XML results (each <testcase> once) and prints
-"test: N passed, N failed, N skipped"; lists the failed ones, and the time each group of tests
-took (from the result files' own times). Exit 1 on a failure or no test.
+"test: N passed, N failed, N skipped"; lists the failed ones with their messages and what the
+failed test printed (the last lines: a CI log that shows only its tail still says why), and the
+time each group of tests took (from the result files' own times). Exit 1 on a failure or no test.
 
   test_summary.py [RESULTS_DIR] [--wall SECONDS]   (--wall: the whole run, to show the rest)
 """
@@ -34,12 +35,28 @@ def seconds(root):
     return sum(float(s.get("time", 0) or 0) for s in root.iter("testsuite"))
 
 
+def clip(text, width):
+    text = " ".join(text.split())
+    return text if len(text) <= width else text[:width - 3] + "..."
+
+
+def describe(file_name, case_name, problem, root, max_lines=12):
+    """A failed case: its message and the lines its test printed ("[ ... ]" lines of the file's
+    system-out, where the rostest checkers write what they measured)."""
+    lines = [f"--- {file_name}: {case_name}",
+             "    " + clip(problem.get("message") or problem.text or "(no message)", 1200)]
+    out = "\n".join(e.text or "" for e in root.iter("system-out"))
+    said = [line for line in out.splitlines() if line.startswith("[ ")]
+    lines += ["    " + clip(line, 900) for line in said[-max_lines:]]
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("results_dir", nargs="?", default=".ws/build/test_results")
     parser.add_argument("--wall", type=float, help="the whole run's wall seconds")
     args = parser.parse_args()
-    passed, failed, skipped = 0, [], 0
+    passed, failed, skipped, details = 0, [], 0, []
     times = {g: [0, 0.0] for g, _ in GROUPS}
     for path in sorted(glob.glob(os.path.join(args.results_dir, "**", "*.xml"), recursive=True)):
         name = os.path.basename(path)
@@ -54,8 +71,11 @@ def main():
             times[group][1] += seconds(root)
         for case in root.iter("testcase"):
             case_name = f"{case.get('classname', '')}.{case.get('name', '')}"
-            if case.find("failure") is not None or case.find("error") is not None:
+            problem = case.find("failure")
+            problem = case.find("error") if problem is None else problem
+            if problem is not None:
                 failed.append(f"{name}: {case_name}")
+                details.append(describe(name, case_name, problem, root))
             elif case.find("skipped") is not None or case.get("status") == "notrun":
                 skipped += 1
             else:
@@ -69,6 +89,8 @@ def main():
     if args.wall:
         print(f"{'the rest (builds, bags, catkin)':34s} {'':5s} {(args.wall - total) / 60:8.1f}")
         print(f"{'the whole run':34s} {'':5s} {args.wall / 60:8.1f}")
+    for text in details:
+        print(text)
     for line in failed:
         print(f"FAILED: {line}")
     print(f"test: {passed} passed, {len(failed)} failed, {skipped} skipped")

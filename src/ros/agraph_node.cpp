@@ -1,6 +1,8 @@
 // agraph_node: loads a building's BIM (an IFC file, converted and cached, or an A-Graph file),
 // builds and solves its A-Graph factor graph once, and publishes latched `a_graph`,
-// `a_graph/markers` and `a_graph/cloud` in the BIM frame. Thin: the work is in is_graphs_core.
+// `a_graph/markers` and `a_graph/cloud` in the BIM frame; and the building as a navigation map
+// (`bim_map`, `bim_map/as_built`, service `locate`: bim_map_server.h, docs/navigation.md).
+// Thin: the work is in is_graphs_core.
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <is_graphs/AGraph.h>
 #include <ros/ros.h>
@@ -8,9 +10,11 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cstdlib>
+#include <optional>
 
 #include "agraph_conversions.h"
 #include "agraph_markers.h"
+#include "bim_map_server.h"
 #include "cloud_conversions.h"
 #include "is_graphs/agraph/agraph_problem.h"
 #include "is_graphs/agraph/agraph_queries.h"
@@ -31,6 +35,7 @@ struct AGraphNodeParams {
   agraph::AGraphProblemConfig problem;
   geometry::SurfaceSamplingConfig sampling;
   ros_markers::AGraphMarkerStyle markers;
+  ros_nav::BimMapParams map;
 };
 
 std::string DefaultCacheDir() {
@@ -55,26 +60,44 @@ AGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   ros_params::Read(pnh, "cloud_include_doors", include_doors);
   if (!include_doors) p.sampling.excluded_classes = {"IfcDoor"};
   ros_params::Read(pnh, "marker_layer_spacing", p.markers.layer_spacing);
+  ros_params::Read(pnh, "map_resolution", p.map.grid.resolution);
+  ros_params::Read(pnh, "map_slice_min", p.map.grid.slice_min);
+  ros_params::Read(pnh, "map_slice_max", p.map.grid.slice_max);
+  ros_params::Read(pnh, "map_margin", p.map.grid.margin);
+  ros_params::Read(pnh, "map_storey", p.map.storey);
+  ros_params::Read(pnh, "locate_door_standoff", p.map.places.door_standoff);
+  ros_params::Read(pnh, "locate_wall_standoff", p.map.places.wall_standoff);
   if (p.frame_id.empty()) throw ros_params::ParamError("parameter '~frame_id' must not be empty");
   ros_params::ThrowIfInvalid("~cloud_density", p.sampling.Validate());
   ros_params::ThrowIfInvalid("A-Graph problem", p.problem.Validate());
+  if (const std::string bad = p.map.grid.Validate(); !bad.empty())
+    throw ros_params::ParamError("parameter '" +
+                                 pnh.resolveName("map_" + bad.substr(0, bad.find(':'))) + "'" +
+                                 bad.substr(bad.find(':')));
+  if (const std::string bad = p.map.places.Validate(); !bad.empty())
+    throw ros_params::ParamError("parameter '" +
+                                 pnh.resolveName("locate_" + bad.substr(0, bad.find(':'))) + "'" +
+                                 bad.substr(bad.find(':')));
   p.markers.frame_id = p.frame_id;
+  p.map.frame_id = p.frame_id;
   return p;
 }
 
-/// The BIM surfaces sampled as points: the mesh when the conversion wrote one.
-std::vector<Eigen::Vector3d> SampleBim(const agraph::AGraph& graph,
-                                       const geometry::SurfaceSamplingConfig& config) {
+/// The building's mesh, when the conversion wrote one (a_graph/cloud, bim_map's columns).
+std::optional<geometry::TriangleMesh> LoadMesh(const agraph::AGraph& graph) {
   if (graph.mesh.empty()) {
-    ROS_WARN("agraph_node: the A-Graph names no mesh; a_graph/cloud stays empty");
-    return {};
+    ROS_WARN(
+        "agraph_node: the A-Graph names no mesh; a_graph/cloud stays empty, bim_map has walls "
+        "only");
+    return std::nullopt;
   }
-  const auto mesh = geometry::LoadObj(graph.mesh);
+  auto mesh = geometry::LoadObj(graph.mesh);
   if (!mesh.ok()) {
-    ROS_WARN("agraph_node: %s; a_graph/cloud stays empty", mesh.error().c_str());
-    return {};
+    ROS_WARN("agraph_node: %s; a_graph/cloud stays empty, bim_map has walls only",
+             mesh.error().c_str());
+    return std::nullopt;
   }
-  return geometry::SampleSurface(mesh.value(), config).points;
+  return std::move(mesh).value();
 }
 
 int Run(ros::NodeHandle& nh, const AGraphNodeParams& params) {
@@ -114,8 +137,11 @@ int Run(ros::NodeHandle& nh, const AGraphNodeParams& params) {
   visualization_msgs::MarkerArray markers = ros_markers::BuildAGraphMarkers(graph, params.markers);
   for (auto& m : markers.markers) m.header.stamp = stamp;
 
+  const std::optional<geometry::TriangleMesh> mesh = LoadMesh(graph);
   sensor_msgs::PointCloud2 cloud =
-      ros_conversions::ToCloudMsg(SampleBim(graph, params.sampling), params.frame_id);
+      ros_conversions::ToCloudMsg(mesh ? geometry::SampleSurface(*mesh, params.sampling).points
+                                       : std::vector<Eigen::Vector3d>{},
+                                  params.frame_id);
   cloud.header.stamp = stamp;
 
   ros::Publisher graph_pub = nh.advertise<is_graphs::AGraph>("a_graph", 1, /*latch=*/true);
@@ -125,6 +151,7 @@ int Run(ros::NodeHandle& nh, const AGraphNodeParams& params) {
   graph_pub.publish(msg);
   marker_pub.publish(markers);
   cloud_pub.publish(cloud);
+  ros_nav::BimMapServer bim_map(nh, graph, mesh ? &*mesh : nullptr, params.map);
   ROS_INFO_STREAM("agraph_node: published (latched) " << cloud.width << " cloud points and\n"
                                                       << agraph::Summarize(graph));
   // /diagnostics: what was loaded (a failed load never gets here: FATAL and exit).

@@ -233,6 +233,13 @@ class FaultTest(unittest.TestCase):
         # Status timeline: (played s, state) in arrival order.
         cls.timeline = [(p, s.state) for p, s in c.statuses]
         cls.first_localized = next((p for p, st in cls.timeline if st == LOCALIZED), None)
+        # Every change of state with its message: what a failure below is read against.
+        changes, last = [], None
+        for p, s in c.statuses:
+            if s.state != last:
+                changes.append(f"{p:.2f} s {STATE_NAMES.get(s.state, s.state)} ({s.message})")
+                last = s.state
+        cls.out("status changes: " + "; ".join(changes))
 
     @classmethod
     def out(cls, text):
