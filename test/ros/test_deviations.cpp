@@ -8,13 +8,18 @@
 // a wall on the plan is within `state_plan_tolerance` of it. (The states are shrunk toward the
 // plan by their prior: a moved wall's state must be on its side, at least `state_min_share` of
 // the way, and at most `state_tolerance` beyond.) Doors (the message's doorways): CLOSED exactly
-// for `closed_doors` (names), at least `min_present_doors` PRESENT.
+// for `closed_doors` (names), at least `min_present_doors` PRESENT. And agraph_node's navigation
+// maps fed by this deviation_node: `bim_map/as_built` frees each wall reported NOT_BUILT that
+// `bim_map` (the plan) blocks, blocks each wall reported MOVED on its side (and frees its planned
+// line where it moved more than its half thickness and two cells), and blocks each EXTRA wall.
 #include <geometry_msgs/PoseStamped.h>
 #include <gtest/gtest.h>
 #include <is_graphs/ISGraph.h>
 #include <is_graphs/WallDeviations.h>
+#include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -30,6 +35,80 @@ is_graphs::ISGraph::ConstPtr last_is_graph_;
 int received_ = 0;
 ros::WallTime last_truth_;
 bool truth_seen_ = false;
+nav_msgs::OccupancyGrid::ConstPtr plan_map_, as_built_map_;
+
+// Occupied (>= 50) within one cell of (x, y) in bim; false outside the grid.
+bool OccupiedNear(const nav_msgs::OccupancyGrid& g, double x, double y) {
+  const double r = g.info.resolution;
+  const int ci = static_cast<int>(std::floor((x - g.info.origin.position.x) / r));
+  const int cj = static_cast<int>(std::floor((y - g.info.origin.position.y) / r));
+  for (int j = cj - 1; j <= cj + 1; ++j)
+    for (int i = ci - 1; i <= ci + 1; ++i)
+      if (i >= 0 && j >= 0 && i < static_cast<int>(g.info.width) &&
+          j < static_cast<int>(g.info.height) && g.data[j * g.info.width + i] >= 50)
+        return true;
+  return false;
+}
+
+// Share of the points (every half cell) along the middle 60 % of a wall's mid-line, moved by
+// `shift` along its left normal, that are occupied within one cell.
+double OccupiedShare(const nav_msgs::OccupancyGrid& g, const geometry_msgs::Point& a,
+                     const geometry_msgs::Point& b, double shift) {
+  const double dx = b.x - a.x, dy = b.y - a.y, length = std::hypot(dx, dy);
+  if (!(length > 0.0)) return 0.0;
+  const double nx = -dy / length, ny = dx / length;
+  const int n = std::max(2, static_cast<int>(0.6 * length / (0.5 * g.info.resolution)));
+  int occupied = 0;
+  for (int k = 0; k < n; ++k) {
+    const double t = 0.2 + 0.6 * k / (n - 1);
+    occupied += OccupiedNear(g, a.x + t * dx + shift * nx, a.y + t * dy + shift * ny);
+  }
+  return static_cast<double>(occupied) / n;
+}
+
+// The maps against the deviations reported (see the file's comment).
+void CheckAsBuiltMap(const is_graphs::WallDeviations& m) {
+  ASSERT_TRUE(plan_map_) << "no message on bim_map (agraph_node)";
+  ASSERT_TRUE(as_built_map_) << "no message on bim_map/as_built (agraph_node)";
+  EXPECT_EQ(as_built_map_->header.frame_id, plan_map_->header.frame_id);
+  std::map<std::string, double> thickness;
+  if (last_is_graph_)
+    for (const auto& w : last_is_graph_->a_graph.walls) thickness[w.name] = w.thickness;
+  const double cell = plan_map_->info.resolution;
+  int checked = 0;
+  for (const auto& w : m.walls) {
+    const double plan = OccupiedShare(*plan_map_, w.start, w.end, 0.0);
+    const double built = OccupiedShare(*as_built_map_, w.start, w.end, 0.0);
+    if (w.status == is_graphs::WallDeviation::NOT_BUILT) {
+      std::printf("  as-built map: %s NOT_BUILT: blocked %.2f in the plan, %.2f as built\n",
+                  w.name.c_str(), plan, built);
+      EXPECT_GE(plan, 0.8) << w.name << ": the plan's map does not block it";
+      EXPECT_LE(built, 0.1) << w.name << " NOT_BUILT is still blocked in bim_map/as_built";
+      ++checked;
+    } else if (w.status == is_graphs::WallDeviation::EXTRA) {
+      std::printf("  as-built map: EXTRA wall: blocked %.2f in the plan, %.2f as built\n", plan,
+                  built);
+      EXPECT_GE(built, 0.8) << "an EXTRA wall is not blocked in bim_map/as_built";
+      ++checked;
+    } else if (w.status == is_graphs::WallDeviation::MOVED && std::abs(w.offset) >= 2 * cell &&
+               std::abs(w.angle) < 0.01 && thickness.count(w.name)) {
+      // The offset's side (the first surface's normal) is not in the message: the moved line is
+      // blocked on one of the two sides.
+      const double side = std::max(OccupiedShare(*as_built_map_, w.start, w.end, w.offset),
+                                   OccupiedShare(*as_built_map_, w.start, w.end, -w.offset));
+      const bool clears = std::abs(w.offset) - thickness[w.name] / 2 >= 2 * cell;
+      std::printf("  as-built map: %s MOVED %+.3f m: planned line blocked %.2f in the plan, "
+                  "%.2f as built; moved line blocked %.2f\n",
+                  w.name.c_str(), w.offset, plan, built, side);
+      EXPECT_GE(side, 0.8) << w.name << ": its moved line is not blocked as built";
+      if (clears) {
+        EXPECT_LE(built, 0.1) << w.name << ": its planned line is still blocked";
+      }
+      ++checked;
+    }
+  }
+  std::printf("  as-built map: %d walls checked\n", checked);
+}
 
 // The merge's as-built states (is_graph.wall_states) against the scenario's moves.
 void CheckWallStates(const std::map<std::string, double>& moved,
@@ -125,6 +204,16 @@ TEST(DeviationsTest, MatchTheScenariosKnownDeviations) {
             last_truth_ = ros::WallTime::now();
             truth_seen_ = true;
           }));
+  const auto latest = [](nav_msgs::OccupancyGrid::ConstPtr* into) {
+    return boost::function<void(const nav_msgs::OccupancyGrid::ConstPtr&)>(
+        [into](const nav_msgs::OccupancyGrid::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          *into = m;
+        });
+  };
+  ros::Subscriber plan_sub = nh.subscribe<nav_msgs::OccupancyGrid>("bim_map", 1, latest(&plan_map_));
+  ros::Subscriber built_sub =
+      nh.subscribe<nav_msgs::OccupancyGrid>("bim_map/as_built", 1, latest(&as_built_map_));
   const ros::WallTime start = ros::WallTime::now();
   while (ros::ok() && (ros::WallTime::now() - start).toSec() < max_wait) {
     ros::WallDuration(0.2).sleep();
@@ -170,6 +259,7 @@ TEST(DeviationsTest, MatchTheScenariosKnownDeviations) {
   EXPECT_GT(seen, 0);
   CheckDoors(*last_);
   CheckWallStates(moved, rotated, not_built);
+  CheckAsBuiltMap(*last_);
 }
 
 }  // namespace
