@@ -141,13 +141,20 @@ bool BimMapServer::OnLocate(is_graphs::Locate::Request& req, is_graphs::Locate::
     res.match_storeys.push_back(p.storey_name);
     res.match_kinds.push_back(navigation::ToString(p.kind));
     res.match_names.push_back(p.name.empty() ? p.guid : p.name);
+    // A storey without a map has no free cell either.
+    res.match_free.push_back(p.on_free_cell && p.storey >= 0 &&
+                             p.storey < static_cast<int>(grids_.size()) && grids_[p.storey]);
   }
   res.success = found.value().size() == 1;
   if (res.success) {
     res.pose = res.matches[0];
     res.storey_name = res.match_storeys[0];
     res.kind = res.match_kinds[0];
+    res.free = res.match_free[0];
     res.message = res.kind + " '" + res.match_names[0] + "' on storey '" + res.storey_name + "'";
+    if (!res.free)
+      res.message += ": no free cell of the storey's bim_map within 1.5 m of it (not a goal to "
+                     "plan to)";
   } else {
     res.message = "'" + req.name + "' is ambiguous: " + std::to_string(res.matches.size()) +
                   " matches (matches, match_storeys); give the storey or a GlobalId";

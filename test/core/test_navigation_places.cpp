@@ -173,6 +173,7 @@ TEST(NavigationPlaces, SnappedGoalsLieOnFreeCellsOfTheStoreysMap) {
         const bool free = grid.value().Contains(c.x(), c.y()) &&
                           grid.value().At(c.x(), c.y()) == OccupancyGrid::kFree;
         not_free += !free;
+        EXPECT_EQ(p.on_free_cell, free) << b.name << " " << ToString(p.kind) << " " << p.name;
         if (!free && p.kind != Place::Kind::kRoom)
           std::printf("[ locate   ] %s %s %s: no free cell\n", b.name.c_str(), ToString(p.kind),
                       p.name.c_str());

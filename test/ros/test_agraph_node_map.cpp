@@ -125,6 +125,8 @@ TEST(AGraphNodeMap, LocateRoomsDoorsAndBadNames) {
   EXPECT_EQ(call.response.pose.header.frame_id, "bim");
   EXPECT_EQ(call.response.kind, "room");
   EXPECT_EQ(call.response.storey_name, "Ground floor");
+  EXPECT_TRUE(call.response.free) << "the room's goal on a free cell of bim_map";
+  EXPECT_EQ(call.response.match_free.size(), call.response.matches.size());
   EXPECT_LT(ms, 50.0) << "a locate round trip";
   std::printf("[ locate   ] round trip %.2f ms\n", ms);
   const auto graph_msg = Wait<is_graphs::AGraph>("a_graph", 5.0);
@@ -141,6 +143,7 @@ TEST(AGraphNodeMap, LocateRoomsDoorsAndBadNames) {
   ASSERT_TRUE(client.call(door));
   EXPECT_TRUE(door.response.success) << door.response.message;
   EXPECT_EQ(door.response.kind, "door");
+  EXPECT_TRUE(door.response.free) << door.response.message;
 
   is_graphs::Locate unknown;
   unknown.request.name = "Meetng";

@@ -35,6 +35,9 @@ struct Place {
   Eigen::Vector3d position{Eigen::Vector3d::Zero()};
   double yaw{0.0};
   Eigen::Vector2d faced{Eigen::Vector2d::Zero()};  // a door's or wall's point the yaw faces
+  // false: SnapToFree found no free cell of the storey's map near it (not a goal a planner can
+  // reach on that map); true until then.
+  bool on_free_cell{true};
 };
 
 /// "room", "door", "wall".
@@ -64,7 +67,8 @@ class PlaceIndex {
   /// Moves each place of storey `storey` (of the `graph` given to the constructor) whose cell
   /// of `grid` (that storey's map) is not free to the nearest free cell within `radius` m, inside
   /// its room (a room) or inside a room of the storey (a door, a wall: then facing what it
-  /// faced). Returns how many moved and how many found no free cell (left where they were).
+  /// faced). Returns how many moved and how many found no free cell (left where they were,
+  /// on_free_cell false).
   Eigen::Vector2i SnapToFree(int storey, const OccupancyGrid& grid, const agraph::AGraph& graph,
                              double radius = 1.5);
 

@@ -36,7 +36,10 @@ Eigen::Vector2i PlaceIndex::SnapToFree(int storey, const OccupancyGrid& grid,
   for (auto& place : places_) {
     if (place.storey != storey) continue;
     const Eigen::Vector2i c = grid.CellOf(place.position.head<2>());
-    if (grid.Contains(c.x(), c.y()) && grid.At(c.x(), c.y()) == OccupancyGrid::kFree) continue;
+    if (grid.Contains(c.x(), c.y()) && grid.At(c.x(), c.y()) == OccupancyGrid::kFree) {
+      place.on_free_cell = true;
+      continue;
+    }
     bool found = false;
     Eigen::Vector2d best = place.position.head<2>();
     for (const auto& o : offsets) {
@@ -49,6 +52,7 @@ Eigen::Vector2i PlaceIndex::SnapToFree(int storey, const OccupancyGrid& grid,
       best = q, found = true;
       break;
     }
+    place.on_free_cell = found;
     if (!found) {
       ++counts[1];
       continue;
