@@ -236,7 +236,8 @@ def evaluate_scenario(name, yaml_path, bag, note, replay, out_dir):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("scenarios", nargs="*", help="scenario YAMLs (default: bags/D*, R*, H*, S*, M*)")
+    parser.add_argument("scenarios", nargs="*",
+                        help="scenario YAMLs (default: bags/D*, R*, H*, S*, M*, G*)")
     parser.add_argument("--out", default=os.path.join(REPO, ".ws", "evaluate"))
     parser.add_argument("--replay",
                         default=os.path.join(REPO, ".ws", "devel", "lib", "is_graphs",
@@ -245,7 +246,7 @@ def main():
     from evaluation_report import write_reports
 
     yamls = args.scenarios or sorted(
-        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml", "S*.yaml", "M*.yaml")
+        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml", "S*.yaml", "M*.yaml", "G*.yaml")
         for y in glob.glob(os.path.join(REPO, "bags", pattern)) if not y.endswith("_short.yaml"))
     if not os.access(args.replay, os.X_OK):
         print(f"evaluate: error: {args.replay} not built (make build)", file=sys.stderr)

@@ -153,8 +153,9 @@ bool BimMapServer::OnLocate(is_graphs::Locate::Request& req, is_graphs::Locate::
     res.free = res.match_free[0];
     res.message = res.kind + " '" + res.match_names[0] + "' on storey '" + res.storey_name + "'";
     if (!res.free)
-      res.message += ": no free cell of the storey's bim_map within 1.5 m of it (not a goal to "
-                     "plan to)";
+      res.message +=
+          ": no free cell of the storey's bim_map within 1.5 m of it (not a goal to "
+          "plan to)";
   } else {
     res.message = "'" + req.name + "' is ambiguous: " + std::to_string(res.matches.size()) +
                   " matches (matches, match_storeys); give the storey or a GlobalId";

@@ -97,9 +97,10 @@ void CheckAsBuiltMap(const is_graphs::WallDeviations& m) {
       const double side = std::max(OccupiedShare(*as_built_map_, w.start, w.end, w.offset),
                                    OccupiedShare(*as_built_map_, w.start, w.end, -w.offset));
       const bool clears = std::abs(w.offset) - thickness[w.name] / 2 >= 2 * cell;
-      std::printf("  as-built map: %s MOVED %+.3f m: planned line blocked %.2f in the plan, "
-                  "%.2f as built; moved line blocked %.2f\n",
-                  w.name.c_str(), w.offset, plan, built, side);
+      std::printf(
+          "  as-built map: %s MOVED %+.3f m: planned line blocked %.2f in the plan, "
+          "%.2f as built; moved line blocked %.2f\n",
+          w.name.c_str(), w.offset, plan, built, side);
       EXPECT_GE(side, 0.8) << w.name << ": its moved line is not blocked as built";
       if (clears) {
         EXPECT_LE(built, 0.1) << w.name << ": its planned line is still blocked";
@@ -211,7 +212,8 @@ TEST(DeviationsTest, MatchTheScenariosKnownDeviations) {
           *into = m;
         });
   };
-  ros::Subscriber plan_sub = nh.subscribe<nav_msgs::OccupancyGrid>("bim_map", 1, latest(&plan_map_));
+  ros::Subscriber plan_sub =
+      nh.subscribe<nav_msgs::OccupancyGrid>("bim_map", 1, latest(&plan_map_));
   ros::Subscriber built_sub =
       nh.subscribe<nav_msgs::OccupancyGrid>("bim_map/as_built", 1, latest(&as_built_map_));
   const ros::WallTime start = ros::WallTime::now();

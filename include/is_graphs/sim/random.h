@@ -12,6 +12,7 @@ enum RandomStream : std::uint64_t {
   kStreamClutter = 1,
   kStreamScan = 2,  // index: the scan number
   kStreamOdometry = 3,
+  kStreamGlass = 4,  // index: the scan number
 };
 
 /// SplitMix64 finalizer: a well-mixed 64-bit value of x.

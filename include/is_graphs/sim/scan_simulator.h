@@ -49,6 +49,8 @@ class ScanSimulator {
   LidarScan Simulate(std::uint64_t index, double stamp) const;
   /// Fraction of beams the body masks (for the log and tests).
   double MaskedFraction() const;
+  /// Beams pass the scene's panes (mesh.glass) as `glass` says; scan i draws from its own stream.
+  void SetGlass(const GlassConfig& glass) { glass_ = glass; }
 
  private:
   const EmbreeScene& scene_;
@@ -57,6 +59,7 @@ class ScanSimulator {
   const RobotMotion& motion_;
   Eigen::Isometry3d base_T_sensor_;
   std::uint64_t seed_;
+  GlassConfig glass_;                 // disabled unless SetGlass
   std::vector<std::uint8_t> masked_;  // per (firing, laser)
 };
 

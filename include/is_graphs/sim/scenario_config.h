@@ -161,6 +161,27 @@ struct RandomClutterConfig {
   double wall_margin{0.5};  // m kept free along the room's walls
 };
 
+/// Glass (a scenario's `scene.glass`, docs/simulator.md; sim/glass.h casts the beams): the
+/// triangles of the mesh objects of `classes` are panes. A beam that hits a pane within
+/// `return_max_angle_deg` of its normal returns off the glass itself with `return_probability` (the
+/// weak return a VLP-16 gets at near-normal incidence); every other beam passes through it (up to
+/// `max_layers` glass faces: a pane has two, a window's body more; past them the beam returns off
+/// the last) and goes on to what lies behind, or to nothing. Each glass face draws once. The IFC
+/// exporters put a window's frame and its glazing in one body: the frame passes beams too. Off
+/// unless `enabled`: then the scene and every scan are as without this struct.
+struct GlassConfig {
+  bool enabled{false};
+  std::vector<std::string> classes{"IfcWindow", "IfcCurtainWall", "IfcPlate"};
+  double return_probability{0.3};
+  double return_max_angle_deg{15.0};
+  int max_layers{8};
+
+  /// "" when valid, else "scene.glass.<field>: ..." (the field first).
+  std::string Validate() const;
+  /// Whether an IFC class (IFC4's "...StandardCase" subtypes with their class) is glass.
+  bool IsGlass(const std::string& ifc_class) const;
+};
+
 struct SceneConfig {
   std::vector<std::string> drop_classes{"IfcDoor"};  // mesh objects left out (open doorways)
   std::vector<DeviationConfig> deviations;
@@ -168,6 +189,7 @@ struct SceneConfig {
   RandomClutterConfig random_clutter;
   double wall_reflectivity{0.45};
   double floor_reflectivity{0.25};
+  GlassConfig glass;  // `glass:` present: windows let beams through
 };
 
 struct ScenarioConfig {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ struct SceneMesh {
   std::vector<Eigen::Vector3f> vertices;
   std::vector<Eigen::Vector3i> triangles;
   std::vector<float> reflectivity;  // per triangle
+  std::vector<std::uint8_t> glass;  // per triangle, 1: a pane (GlassConfig); empty: no glass
 
   void AddTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    float reflectivity);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "is_graphs/sim/glass.h"
 #include "is_graphs/sim/random.h"
 
 namespace is_graphs {
@@ -84,6 +85,7 @@ LidarScan ScanSimulator::Simulate(std::uint64_t index, double stamp) const {
     }
   }
   scene_.Intersect(rays, &hits);
+  PassThroughGlass(scene_, mesh_, glass_, rays, &hits, StreamSeed(seed_, kStreamGlass, index));
 
   ScanNoise noise(StreamSeed(seed_, kStreamScan, index));
   LidarScan scan;

@@ -259,7 +259,8 @@ std::string ScenarioConfig::Validate() const {
     return "scene.random_clutter.count: must be in [0, 10000]";
   }
   return First({Range("scene.wall_reflectivity", scene.wall_reflectivity, 0.0, 1.0),
-                Range("scene.floor_reflectivity", scene.floor_reflectivity, 0.0, 1.0)});
+                Range("scene.floor_reflectivity", scene.floor_reflectivity, 0.0, 1.0),
+                scene.glass.Validate()});
 }
 
 }  // namespace sim

@@ -91,7 +91,7 @@ void ParseScene(const YAML::Node& n, SceneConfig* s) {
   const std::string f = "scene";
   CheckMap(n, f,
            {"drop_classes", "deviations", "clutter", "random_clutter", "wall_reflectivity",
-            "floor_reflectivity"});
+            "floor_reflectivity", "glass"});
   if (n["drop_classes"]) s->drop_classes = Strings(n["drop_classes"], f + ".drop_classes");
   for (const char* list : {"deviations", "clutter"}) {
     if (n[list] && !n[list].IsSequence()) Fail(Join(f, list), "must be a list");
@@ -121,6 +121,17 @@ void ParseScene(const YAML::Node& n, SceneConfig* s) {
   }
   Get(n, f, "wall_reflectivity", &s->wall_reflectivity);
   Get(n, f, "floor_reflectivity", &s->floor_reflectivity);
+  if (n["glass"]) {  // present (even `glass: {}`): on, with the defaults for what is not given
+    const YAML::Node g = n["glass"];
+    const std::string gf = f + ".glass";
+    if (!g.IsMap()) Fail(gf, "must be a map (classes, return_probability, ...), {} for defaults");
+    CheckMap(g, gf, {"classes", "return_probability", "return_max_angle_deg", "max_layers"});
+    s->glass.enabled = true;
+    if (g["classes"]) s->glass.classes = Strings(g["classes"], gf + ".classes");
+    Get(g, gf, "return_probability", &s->glass.return_probability);
+    Get(g, gf, "return_max_angle_deg", &s->glass.return_max_angle_deg);
+    Get(g, gf, "max_layers", &s->glass.max_layers);
+  }
 }
 
 }  // namespace yaml_fields

@@ -220,6 +220,10 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
                                           : is_floor ? config.floor_reflectivity
                                                      : 0.4);
     const Eigen::Vector3i& tri = bim.triangles[t];
+    if (config.glass.enabled) {
+      scene.glass.resize(scene.triangles.size(), 0);  // the walls added before: not glass
+      scene.glass.push_back(config.glass.IsGlass(cls) ? 1 : 0);
+    }
     scene.AddTriangle(built(bim.vertices[tri[0]]), built(bim.vertices[tri[1]]),
                       built(bim.vertices[tri[2]]), refl);
   }
@@ -258,6 +262,18 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
                         std::to_string(config.random_clutter.count) + " objects");
   }
   if (scene.triangles.empty()) return R::Error("scene: no triangles left (empty mesh?)");
+  if (config.glass.enabled) {
+    scene.glass.resize(scene.triangles.size(), 0);  // clutter: not glass
+    const long panes = std::count(scene.glass.begin(), scene.glass.end(), 1);
+    if (panes == 0) {
+      std::string names;
+      for (const std::string& c : config.glass.classes) names += (names.empty() ? "" : ", ") + c;
+      return R::Error("scene.glass.classes: no object of " + names +
+                      " in the mesh: no glass to see through");
+    }
+    log.lines.push_back("scene.glass: " + std::to_string(panes) + " of " +
+                        std::to_string(scene.triangles.size()) + " triangles are glass");
+  }
   return R::Ok(std::move(scene));
 }
 

@@ -316,6 +316,7 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
   sim->scans = std::make_unique<ScanSimulator>(
       *sim->embree, sim->scene, *sim->sensor, *sim->motion, sim->base_T_sensor,
       BodyBox{config.body_center, config.body_size}, config.seed);
+  sim->scans->SetGlass(config.scene.glass);
   return R::Ok(std::move(sim));
 }
 
