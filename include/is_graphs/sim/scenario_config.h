@@ -182,6 +182,23 @@ struct GlassConfig {
   bool IsGlass(const std::string& ifc_class) const;
 };
 
+/// An object of the world outside the building (a scenario's `scene.outside`), seen through its
+/// windows and open doors (sim/outside_world.h). Kinds and their defaults (a given size, radius,
+/// height or reflectivity overrides them): building 20 x 10 x 9 m (a facing block); car
+/// 4.5 x 1.8 x 1.5 m; tree, a trunk r 0.15 m, 2.5 m high, under a crown r `radius` (1.5 m),
+/// `height` (3 m) high; wall 10 x 0.3 x 2 m (a fence, a boundary wall). Each stands on `base_z`
+/// (default: the ground, the lowest storey with rooms).
+struct OutsideObjectConfig {
+  std::string type{"building"};                       // building | car | tree | wall
+  Eigen::Vector2d position{Eigen::Vector2d::Zero()};  // in bim
+  Eigen::Vector3d size{Eigen::Vector3d::Zero()};      // building, car, wall; 0 = default
+  double radius{0.0};                                 // tree's crown; 0 = default
+  double height{0.0};                                 // tree's crown; 0 = default
+  double yaw_deg{0.0};
+  double reflectivity{0.0};  // 0 = the kind's default
+  std::optional<double> base_z;
+};
+
 struct SceneConfig {
   std::vector<std::string> drop_classes{"IfcDoor"};  // mesh objects left out (open doorways)
   std::vector<DeviationConfig> deviations;
@@ -189,7 +206,8 @@ struct SceneConfig {
   RandomClutterConfig random_clutter;
   double wall_reflectivity{0.45};
   double floor_reflectivity{0.25};
-  GlassConfig glass;  // `glass:` present: windows let beams through
+  GlassConfig glass;                         // `glass:` present: windows let beams through
+  std::vector<OutsideObjectConfig> outside;  // the world outside: none by default
 };
 
 struct ScenarioConfig {

@@ -255,6 +255,18 @@ std::string ScenarioConfig::Validate() const {
                Range(f + ".reflectivity", c.reflectivity, 0.0, 1.0)});
     if (!e.empty()) return e;
   }
+  for (std::size_t i = 0; i < scene.outside.size(); ++i) {
+    const OutsideObjectConfig& o = scene.outside[i];
+    const std::string f = "scene.outside[" + std::to_string(i) + "]";
+    if (o.size.minCoeff() < 0.0 || o.size.maxCoeff() > 500.0)
+      return f + ".size: must be in [0, 500] m";
+    e = First({Range(f + ".radius", o.radius, 0.0, 20.0, "m"),
+               Range(f + ".height", o.height, 0.0, 100.0, "m"),
+               Range(f + ".yaw_deg", o.yaw_deg, -360.0, 360.0, "deg"),
+               Range(f + ".reflectivity", o.reflectivity, 0.0, 1.0)});
+    if (!e.empty()) return e;
+    if (!o.position.allFinite()) return f + ".position: must be finite";
+  }
   if (scene.random_clutter.count < 0 || scene.random_clutter.count > 10000) {
     return "scene.random_clutter.count: must be in [0, 10000]";
   }

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -159,6 +160,48 @@ ScenarioConfig ParseRoot(const YAML::Node& root) {
 
 }  // namespace
 
+std::string WithYamlLine(const std::string& text, const std::string& name,
+                         const std::string& error) {
+  // The field path: the error's text up to the first ':' or ' ', as "a.b[2].c".
+  const std::size_t end = error.find_first_of(": ");
+  const std::string path = error.substr(0, end);
+  int line = -1;
+  try {
+    YAML::Node node = YAML::Load(text);
+    std::size_t i = 0;
+    while (i < path.size() && node.IsDefined()) {
+      std::size_t j = path.find_first_of(".[", i);
+      const std::string key = path.substr(i, j == std::string::npos ? std::string::npos : j - i);
+      if (!key.empty()) {
+        if (!node.IsMap()) break;
+        const YAML::Node child = static_cast<const YAML::Node&>(node)[key];  // no key made
+        if (!child) break;
+        node.reset(child);  // (operator= would overwrite the tree)
+        line = node.Mark().line;
+      }
+      i = j == std::string::npos ? path.size() : j;
+      while (i < path.size() && path[i] == '[') {  // [index]s
+        const std::size_t close = path.find(']', i);
+        if (close == std::string::npos) break;
+        const int index = std::atoi(path.substr(i + 1, close - i - 1).c_str());
+        if (!node.IsSequence() || index < 0 || index >= static_cast<int>(node.size())) {
+          i = path.size();
+          break;
+        }
+        node.reset(static_cast<const YAML::Node&>(node)[index]);
+        line = node.Mark().line;
+        i = close + 1;
+      }
+      if (i < path.size() && path[i] == '.') ++i;
+    }
+  } catch (const YAML::Exception&) {
+    line = -1;
+  }
+  if (line < 0 || path.find_first_of("abcdefghijklmnopqrstuvwxyz") == std::string::npos)
+    return name + ": " + error;
+  return name + ":" + std::to_string(line + 1) + ": " + error;
+}
+
 Result<ScenarioConfig> ParseScenarioYaml(const std::string& text, const std::string& name,
                                          const std::string& base_dir) {
   try {
@@ -166,10 +209,10 @@ Result<ScenarioConfig> ParseScenarioYaml(const std::string& text, const std::str
     ScenarioConfig config = ParseRoot(root);
     config.base_dir = base_dir;
     const std::string error = config.Validate();
-    if (!error.empty()) return Result<ScenarioConfig>::Error(name + ": " + error);
+    if (!error.empty()) return Result<ScenarioConfig>::Error(WithYamlLine(text, name, error));
     return Result<ScenarioConfig>::Ok(std::move(config));
   } catch (const FieldError& e) {
-    return Result<ScenarioConfig>::Error(name + ": " + e.what());
+    return Result<ScenarioConfig>::Error(WithYamlLine(text, name, e.what()));
   } catch (const YAML::Exception& e) {
     std::ostringstream out;
     out << name << ":" << e.mark.line + 1 << ":" << e.mark.column + 1

@@ -85,15 +85,40 @@ ClutterConfig ParseClutter(const YAML::Node& n, const std::string& f) {
   return c;
 }
 
+OutsideObjectConfig ParseOutside(const YAML::Node& n, const std::string& f) {
+  CheckMap(n, f,
+           {"type", "position", "size", "radius", "height", "yaw_deg", "reflectivity", "base_z"});
+  OutsideObjectConfig o;
+  Get(n, f, "type", &o.type);
+  if (o.type != "building" && o.type != "car" && o.type != "tree" && o.type != "wall")
+    Fail(f + ".type", "must be building, car, tree or wall, got '" + o.type + "'");
+  if (!n["position"]) Fail(f + ".position", "missing ([x, y] in bim, outside the building)");
+  o.position = Vec2(n["position"], f + ".position");
+  if (n["size"]) {
+    const std::vector<double> v = Numbers(n["size"], f + ".size", 3, 3);
+    o.size = {v[0], v[1], v[2]};
+  }
+  Get(n, f, "radius", &o.radius);
+  Get(n, f, "height", &o.height);
+  Get(n, f, "yaw_deg", &o.yaw_deg);
+  Get(n, f, "reflectivity", &o.reflectivity);
+  if (n["base_z"]) {
+    double z = 0.0;
+    Get(n, f, "base_z", &z);
+    o.base_z = z;
+  }
+  return o;
+}
+
 }  // namespace
 
 void ParseScene(const YAML::Node& n, SceneConfig* s) {
   const std::string f = "scene";
   CheckMap(n, f,
            {"drop_classes", "deviations", "clutter", "random_clutter", "wall_reflectivity",
-            "floor_reflectivity", "glass"});
+            "floor_reflectivity", "glass", "outside"});
   if (n["drop_classes"]) s->drop_classes = Strings(n["drop_classes"], f + ".drop_classes");
-  for (const char* list : {"deviations", "clutter"}) {
+  for (const char* list : {"deviations", "clutter", "outside"}) {
     if (n[list] && !n[list].IsSequence()) Fail(Join(f, list), "must be a list");
   }
   for (std::size_t i = 0; n["deviations"] && i < n["deviations"].size(); ++i) {
@@ -102,6 +127,9 @@ void ParseScene(const YAML::Node& n, SceneConfig* s) {
   }
   for (std::size_t i = 0; n["clutter"] && i < n["clutter"].size(); ++i) {
     s->clutter.push_back(ParseClutter(n["clutter"][i], f + ".clutter[" + std::to_string(i) + "]"));
+  }
+  for (std::size_t i = 0; n["outside"] && i < n["outside"].size(); ++i) {
+    s->outside.push_back(ParseOutside(n["outside"][i], f + ".outside[" + std::to_string(i) + "]"));
   }
   if (n["random_clutter"]) {
     const YAML::Node r = n["random_clutter"];

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "is_graphs/sim/clutter.h"
+#include "is_graphs/sim/outside_world.h"
 #include "is_graphs/sim/room_geometry.h"
 
 namespace is_graphs {
@@ -262,6 +263,9 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
                         std::to_string(config.random_clutter.count) + " objects");
   }
   if (scene.triangles.empty()) return R::Error("scene: no triangles left (empty mesh?)");
+  const auto outside = AddOutsideWorld(&scene, graph, config.outside);
+  if (!outside.ok()) return R::Error(outside.error());
+  log.lines.insert(log.lines.end(), outside.value().begin(), outside.value().end());
   if (config.glass.enabled) {
     scene.glass.resize(scene.triangles.size(), 0);  // clutter: not glass
     const long panes = std::count(scene.glass.begin(), scene.glass.end(), 1);

@@ -22,7 +22,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 #include "is_graphs/sim/scenario_yaml.h"
@@ -153,8 +155,14 @@ int Run(const Args& args) {
   if (!config.ok()) return std::cerr << "make_bag: " << config.error() << "\n", 2;
   const auto prepared = is_graphs::sim::PrepareSimulation(
       config.value(), is_graphs::sim::DefaultBimCacheDir(root), args.duration_scale);
-  if (!prepared.ok()) {
-    return std::cerr << "make_bag: " << args.scenario << ": " << prepared.error() << "\n", 2;
+  if (!prepared.ok()) {  // errors of a field (scene.clutter[2].room: ...) name its line
+    std::ifstream in(args.scenario);
+    std::stringstream text;
+    text << in.rdbuf();
+    return std::cerr << "make_bag: "
+                     << is_graphs::sim::WithYamlLine(text.str(), args.scenario, prepared.error())
+                     << "\n",
+           2;
   }
   const is_graphs::sim::Simulation& sim = *prepared.value();
   if (!args.quiet) {
