@@ -18,11 +18,11 @@
 #include <utility>
 #include <vector>
 
+#include "converter_check.h"
 #include "is_graphs/agraph/ifc_conversion.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/matching/graph_match.h"
 #include "is_graphs/matching/synthetic_sgraph.h"
-#include "converter_check.h"
 
 namespace is_graphs {
 namespace testing {
@@ -63,6 +63,19 @@ inline agraph::WallSurface MakeSurface(int id, int wall, int storey, const Eigen
   s.start = a;
   s.end = b;
   return s;
+}
+
+/// A synthetic S-Graph's config with the matcher tests' usual noise (1 deg normals, 3 cm
+/// offsets, 10 cm centres, BIM off by 5 cm), at B_x_M (x, y, yaw).
+inline matching::SyntheticSGraphConfig Noisy(std::uint64_t seed, double yaw, double x, double y) {
+  matching::SyntheticSGraphConfig c;
+  c.bim_T_map = geometry::IsometryFromXYYaw(x, y, yaw);
+  c.normal_noise_deg = 1.0;
+  c.offset_noise = 0.03;
+  c.centre_noise = 0.1;
+  c.bim_deviation = 0.05;
+  c.seed = seed;
+  return c;
 }
 
 inline std::string ProjectBim(const std::string& name) {

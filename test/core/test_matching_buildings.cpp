@@ -15,19 +15,9 @@ namespace matching {
 namespace {
 
 using testing::MatchIsCorrect;
+using testing::Noisy;
 using testing::ProjectBim;
 using testing::RoomByName;
-
-SyntheticSGraphConfig Noisy(std::uint64_t seed, double yaw, double x, double y) {
-  SyntheticSGraphConfig c;
-  c.bim_T_map = geometry::IsometryFromXYYaw(x, y, yaw);
-  c.normal_noise_deg = 1.0;
-  c.offset_noise = 0.03;
-  c.centre_noise = 0.1;
-  c.bim_deviation = 0.05;
-  c.seed = seed;
-  return c;
-}
 
 std::vector<int> Rooms(const agraph::AGraph& g, const std::vector<std::string>& names) {
   std::vector<int> ids;

@@ -18,6 +18,7 @@ namespace matching {
 namespace {
 
 using testing::MatchIsCorrect;
+using testing::Noisy;
 using testing::ProjectBim;
 using testing::RoomByName;
 
@@ -99,23 +100,18 @@ TEST(PoseHint, BadHintsAreNamedAndChangeNothing) {
   EXPECT_EQ(hinted.Describe(), before) << "a bad hint replaces nothing";
 }
 
-SyntheticSGraphConfig Noisy(std::uint64_t seed, double yaw, double x, double y) {
-  SyntheticSGraphConfig c;
-  c.bim_T_map = geometry::IsometryFromXYYaw(x, y, yaw);
-  c.normal_noise_deg = 1.0;
-  c.offset_noise = 0.03;
-  c.centre_noise = 0.1;
-  c.bim_deviation = 0.05;
-  c.seed = seed;
-  return c;
+// symmetric.ifc walked in rooms whose twins (the plan turned a half turn) the walls cannot tell
+// apart.
+SyntheticSGraph SymmetricTwins(const agraph::AGraph& g) {
+  auto c = Noisy(5, 2.4, -3.0, 8.0);
+  for (const char* n : {"Corridor", "S1", "S3", "S4", "S5", "N1", "N3", "N4", "N5"})
+    c.rooms.push_back(RoomByName(g, n));
+  return MakeSyntheticSGraph(g, c);
 }
 
 TEST(PoseHint, TheHintDecidesBetweenTwinsTheEvidenceCannotTellApart) {
   IS_GRAPHS_BUILDING_OR_SKIP(g, ProjectBim("symmetric.ifc"));
-  auto c = Noisy(5, 2.4, -3.0, 8.0);
-  for (const char* n : {"Corridor", "S1", "S3", "S4", "S5", "N1", "N3", "N4", "N5"})
-    c.rooms.push_back(RoomByName(*g, n));
-  const SyntheticSGraph s = MakeSyntheticSGraph(*g, c);
+  const SyntheticSGraph s = SymmetricTwins(*g);
   const Pose2 truth = PlanarPose(s.bim_T_map), robot{0.4, {2.0, 1.0}};
 
   GraphMatcher matcher;
@@ -176,10 +172,7 @@ TEST(PoseHint, TheHintDecidesBetweenTwinsTheEvidenceCannotTellApart) {
 
 TEST(PoseHint, AHintNeverMakesAPoseTheChecksDoNotAccept) {
   IS_GRAPHS_BUILDING_OR_SKIP(g, ProjectBim("symmetric.ifc"));
-  auto c = Noisy(5, 2.4, -3.0, 8.0);
-  for (const char* n : {"Corridor", "S1", "S3", "S4", "S5", "N1", "N3", "N4", "N5"})
-    c.rooms.push_back(RoomByName(*g, n));
-  const SyntheticSGraph s = MakeSyntheticSGraph(*g, c);
+  const SyntheticSGraph s = SymmetricTwins(*g);
   HintedMatching hinted;
   ASSERT_EQ(hinted.Set(HintAt(PlanarPose(s.bim_T_map), {}, 0.0, 0.0, 0.0)), "");
   GraphMatcher plain;

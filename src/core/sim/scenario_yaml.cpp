@@ -32,10 +32,7 @@ void ParseRoute(const YAML::Node& n, const std::string& f, std::vector<std::stri
   if (n["start"]) {
     CheckMap(n["start"], f + ".start", {"room", "pose"});
     Get(n["start"], f + ".start", "room", &start->room);
-    if (n["start"]["pose"]) {
-      const std::vector<double> v = Numbers(n["start"]["pose"], f + ".start.pose", 3, 3);
-      start->pose = Eigen::Vector3d(v[0], v[1], v[2]);
-    }
+    if (n["start"]["pose"]) start->pose = Vec3(n["start"]["pose"], f + ".start.pose");
   }
 }
 

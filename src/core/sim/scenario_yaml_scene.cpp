@@ -74,10 +74,7 @@ ClutterConfig ParseClutter(const YAML::Node& n, const std::string& f) {
   if (n["position"]) c.position = Vec2(n["position"], f + ".position");
   Get(n, f, "room", &c.room);
   if (n["offset"]) c.offset = Vec2(n["offset"], f + ".offset");
-  if (n["size"]) {
-    const std::vector<double> v = Numbers(n["size"], f + ".size", 3, 3);
-    c.size = {v[0], v[1], v[2]};
-  }
+  if (n["size"]) c.size = Vec3(n["size"], f + ".size");
   Get(n, f, "radius", &c.radius);
   Get(n, f, "height", &c.height);
   Get(n, f, "yaw_deg", &c.yaw_deg);
@@ -94,10 +91,7 @@ OutsideObjectConfig ParseOutside(const YAML::Node& n, const std::string& f) {
     Fail(f + ".type", "must be building, car, tree or wall, got '" + o.type + "'");
   if (!n["position"]) Fail(f + ".position", "missing ([x, y] in bim, outside the building)");
   o.position = Vec2(n["position"], f + ".position");
-  if (n["size"]) {
-    const std::vector<double> v = Numbers(n["size"], f + ".size", 3, 3);
-    o.size = {v[0], v[1], v[2]};
-  }
+  if (n["size"]) o.size = Vec3(n["size"], f + ".size");
   Get(n, f, "radius", &o.radius);
   Get(n, f, "height", &o.height);
   Get(n, f, "yaw_deg", &o.yaw_deg);

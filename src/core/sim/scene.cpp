@@ -184,6 +184,8 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
   }
 
   const std::set<std::string> drop(config.drop_classes.begin(), config.drop_classes.end());
+  if (config.glass.enabled)
+    scene.glass.assign(scene.triangles.size(), 0);  // walls added: not glass
   std::set<long> seen_walls;
   for (std::size_t t = 0; t < bim.triangles.size(); ++t) {
     const int object = bim.triangle_object.empty() ? -1 : bim.triangle_object[t];
@@ -221,10 +223,7 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
                                           : is_floor ? config.floor_reflectivity
                                                      : 0.4);
     const Eigen::Vector3i& tri = bim.triangles[t];
-    if (config.glass.enabled) {
-      scene.glass.resize(scene.triangles.size(), 0);  // the walls added before: not glass
-      scene.glass.push_back(config.glass.IsGlass(cls) ? 1 : 0);
-    }
+    if (config.glass.enabled) scene.glass.push_back(config.glass.IsGlass(cls) ? 1 : 0);
     scene.AddTriangle(built(bim.vertices[tri[0]]), built(bim.vertices[tri[1]]),
                       built(bim.vertices[tri[2]]), refl);
   }

@@ -90,6 +90,11 @@ inline Eigen::Vector2d Vec2(const YAML::Node& node, const std::string& field) {
   return {v[0], v[1]};
 }
 
+inline Eigen::Vector3d Vec3(const YAML::Node& node, const std::string& field) {
+  const std::vector<double> v = Numbers(node, field, 3, 3);
+  return {v[0], v[1], v[2]};
+}
+
 inline std::vector<std::string> Strings(const YAML::Node& node, const std::string& field) {
   if (!node.IsSequence()) Fail(field, "must be a list of strings");
   std::vector<std::string> v;
