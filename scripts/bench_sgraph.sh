@@ -27,8 +27,8 @@ field() {  # field KEY FILE: a top-level scalar of a scenario YAML
   sed -n "s/^$1:[[:space:]]*//p" "$2" | sed 's/[[:space:]]*#.*//; s/^"//; s/"$//' | head -n1
 }
 
-printf '| bag | keyframes | scan median / p99 [ms] | keyframe scan p99 [ms] | optimization median / max [ms] | RTF | peak RSS [MiB] | APE S-Graph / odom [m] | planes within 5 cm & 1 deg (on other elements) | dist. median / max [m] | angle median / max [deg] | rooms walked / found / false |\n'
-printf '|---|---|---|---|---|---|---|---|---|---|---|---|\n'
+printf '| bag | keyframes | scan median / p99 [ms] | keyframe scan p99 [ms] | optimization median / max [ms] | RTF | peak RSS [MiB] | APE S-Graph / odom [m] | planes within 5 cm & 1 deg (on other elements) | dist. median / max [m] | angle median / max [deg] | rooms walked / found / false | map RMSE S-Graph alone [m] |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|---|---|\n'
 ran=0 failed=0
 for yaml in bags/*.yaml; do
   name="$(basename "${yaml}" .yaml)"
@@ -71,10 +71,11 @@ for yaml in bags/*.yaml; do
       match($0, /distance median [0-9.]+ max [0-9.]+/); split(substr($0, RSTART, RLENGTH), d, " ")
       match($0, /angle median [0-9.]+ max [0-9.]+/); split(substr($0, RSTART, RLENGTH), a, " ")
     }
+    /^map cloud vs BIM/ { rmse = $13 }
     /^rooms:/ { walked = $4; found = $6; falses = $10; sub(",", "", walked); sub(",", "", found) }
     END {
-      printf "| %s | %s | %s / %s | %s | %s / %s | %s | %s | %s / %s | %s / %s (%s) | %s / %s | %s / %s | %s / %s / %s |\n",
-        name, kf, med, p99, kp99, omed, omax, rtf, rss, ape, odom, good, on, win, d[3], d[5], a[3], a[5], walked, found, falses
+      printf "| %s | %s | %s / %s | %s | %s / %s | %s | %s | %s / %s | %s / %s (%s) | %s / %s | %s / %s | %s / %s / %s | %s |\n",
+        name, kf, med, p99, kp99, omed, omax, rtf, rss, ape, odom, good, on, win, d[3], d[5], a[3], a[5], walked, found, falses, rmse
     }' "${log}"
 done
 echo

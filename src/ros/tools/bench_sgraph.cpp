@@ -38,6 +38,7 @@
 #include "is_graphs/agraph/agraph_queries.h"
 #include "is_graphs/agraph/ifc_conversion.h"
 #include "is_graphs/geometry/triangle_mesh.h"
+#include "is_graphs/pipeline/evaluation.h"
 #include "is_graphs/sgraph/evaluation.h"
 #include "is_graphs/sgraph/plane_support.h"
 #include "is_graphs/sgraph/sgraph_builder.h"
@@ -216,6 +217,18 @@ int main(int argc, char** argv) {
       std::acos(std::min(1.0, tilted.z())) * 180.0 / M_PI, traj.sgraph_rmse_gravity,
       traj.odom_rmse_gravity);
   const Eigen::Isometry3d& bim_T_map = traj.bim_T_map_gravity;
+  {
+    // The S-Graph alone (no BIM in its optimization): its map cloud put in B by the yaw-aligned
+    // fit of its keyframes to the truth, against the wall-surfaces (the paper's map RMSE).
+    std::vector<Eigen::Vector3f> cloud = builder.MapCloud(0.1);
+    const Eigen::Isometry3f b_T_m = bim_T_map.cast<float>();
+    for (auto& p : cloud) p = b_T_m * p;
+    const auto e = pipeline::CloudAgainstWallSurfaces(cloud, building);
+    std::printf(
+        "map cloud vs BIM wall-surfaces (S-Graph alone, yaw-aligned to the truth): RMSE %.3f m, "
+        "median %.3f m (%d of %d points)\n",
+        e.rmse, e.median, e.used, e.points);
+  }
   std::optional<geometry::TriangleMesh> mesh;
   if (!building.mesh.empty()) {
     auto m = geometry::LoadObj(building.mesh);
