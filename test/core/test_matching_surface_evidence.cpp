@@ -79,6 +79,28 @@ TEST(SurfaceEvidence, ShareOfAPlaneLyingOnTheBimsSurfaces) {
   EXPECT_NEAR(evidence.Explained({short_one, east, off}, identity, 0), 0.5 + 1.0, 1e-9);
 }
 
+// A plane in a wall's depth (a pane 0.37 m behind the inner face of a 0.42 m wall) is explained
+// by the BIM (only an opening shows it) but lies along no face: it is no pair for the merge.
+TEST(SurfaceEvidence, APlaneInAWallsDepthIsExplainedButAlongNoFace) {
+  agraph::AGraph g;
+  g.walls.resize(2);
+  g.walls[0].id = 0, g.walls[0].thickness = 0.42;
+  g.walls[1].id = 1, g.walls[1].thickness = std::nan("");
+  g.surfaces.push_back(testing::MakeSurface(0, 0, 0, {0.0, 0.0}, {8.0, 0.0}, {0.0, 1.0}));
+  g.surfaces.push_back(testing::MakeSurface(1, 1, 0, {0.0, 10.0}, {8.0, 10.0}, {0.0, 1.0}));
+  const SurfaceEvidence evidence(g, MatcherConfig());
+  const Pose2 identity;
+  const WallSegment pane = Segment({1.0, -0.37}, {3.0, -0.37}, {0, 1});
+  EXPECT_NEAR(evidence.Share(pane, identity, 0), 1.0, 1e-9);
+  EXPECT_TRUE(evidence.AlongSurfaces(pane, identity, 0).empty());
+  ASSERT_EQ(evidence.InWallDepth(pane, identity, 0).size(), 1u);
+  EXPECT_EQ(evidence.InWallDepth(pane, identity, 0)[0].id, 0);
+  // Beyond the wall's thickness, facing the other way, or behind a wall of unknown thickness.
+  EXPECT_EQ(evidence.Share(Segment({1.0, -0.6}, {3.0, -0.6}, {0, 1}), identity, 0), 0.0);
+  EXPECT_EQ(evidence.Share(Segment({1.0, -0.37}, {3.0, -0.37}, {0, -1}), identity, 0), 0.0);
+  EXPECT_EQ(evidence.Share(Segment({1.0, 9.63}, {3.0, 9.63}, {0, 1}), identity, 0), 0.0);
+}
+
 TEST(SurfaceEvidence, OnlyWallGradePlanesCount) {
   MatcherConfig config;
   sgraph::SGraph g;

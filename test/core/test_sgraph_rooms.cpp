@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -68,6 +69,50 @@ TEST(RoomDetection, RotatedRoomWithADoorway) {
   ASSERT_TRUE(room);
   EXPECT_EQ(room->type, RoomType::kRoom);
   EXPECT_LT((room->center - r * Vector2d(2.5, 2)).norm(), 0.1);
+}
+
+// A wall along y = y0 from x0 to x1 facing +y (into a room above it).
+Wall2D SouthWall(int id, double y0, double x0, double x1) {
+  Wall2D w;
+  w.id = id;
+  w.normal = Vector2d(0, 1);
+  w.d = y0;
+  w.start = Vector2d(x1, y0);
+  w.end = Vector2d(x0, y0);
+  return w;
+}
+
+TEST(RoomDetection, SeenThroughOpeningIsWhatIsSetInAWallsDepth) {
+  const Wall2D face = SouthWall(0, 0.0, 2.5, 6.0);
+  EXPECT_TRUE(SeenThroughOpening(face, SouthWall(1, -0.37, 0.0, 2.4)));   // a pane at its end
+  EXPECT_TRUE(SeenThroughOpening(face, SouthWall(1, -0.2, 3.0, 4.0)));    // a door leaf in it
+  EXPECT_FALSE(SeenThroughOpening(face, SouthWall(1, -1.2, 0.0, 2.4)));   // a room beyond
+  EXPECT_FALSE(SeenThroughOpening(face, SouthWall(1, 0.37, 0.0, 2.4)));   // in front of it
+  EXPECT_FALSE(SeenThroughOpening(face, SouthWall(1, -0.05, 0.0, 2.4)));  // the same face
+  // A cupboard's front (2.5-6) before a wall seen on both sides of it (0-8): the wall is no
+  // opening of the cupboard.
+  EXPECT_FALSE(SeenThroughOpening(face, SouthWall(1, -0.4, 0.0, 8.0)));
+  Wall2D facing_away = SouthWall(1, -0.37, 0.0, 2.4);
+  facing_away.normal = -facing_away.normal;
+  facing_away.d = -facing_away.d;
+  EXPECT_FALSE(SeenThroughOpening(face, facing_away));
+}
+
+TEST(RoomDetection, APaneSetInTheWallsDepthDoesNotBoundTheRoom) {
+  // A 6 x 4 m room whose south wall (y = 0) is glazed from its west corner to x = 2.4: the pane
+  // stands 0.37 m deep in the wall (as Revit's duplex living room). The room is bounded by the
+  // wall's face, not by the pane: its centre at y = 2, not 1.815.
+  std::vector<Wall2D> walls = PolygonWalls({{0, 0}, {6, 0}, {6, 4}, {0, 4}});
+  walls[0].end = Vector2d(6, 0);
+  walls[0].start = Vector2d(2.5, 0);
+  walls[3].end = Vector2d(0, -0.37);  // the west wall runs on to the pane
+  walls.push_back(SouthWall(10, -0.37, 0.0, 2.4));
+  const auto room = Detect(walls, Vector2d(1.5, 2.5));
+  ASSERT_TRUE(room);
+  EXPECT_TRUE(room->rectangular);
+  EXPECT_NEAR(room->center.y(), 2.0, 1e-6);
+  EXPECT_NE(std::find(room->walls.begin(), room->walls.end(), 0), room->walls.end());
+  EXPECT_EQ(std::find(room->walls.begin(), room->walls.end(), 10), room->walls.end());
 }
 
 TEST(RoomDetection, CorridorIsTwoOpposedWalls) {

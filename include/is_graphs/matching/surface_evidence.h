@@ -62,6 +62,11 @@ class SurfaceEvidence {
   };
   /// The A-surfaces of `storey` that `plane` lies along under `pose` (those Share counts).
   std::vector<Along> AlongSurfaces(const WallSegment& plane, const Pose2& pose, int storey) const;
+  /// The A-surfaces of `storey` that `plane` lies behind under `pose`, facing the same way,
+  /// further than offset_tolerance and within the thickness of the surface's wall: in the wall's
+  /// depth, where only an opening (a window's pane or reveal, a door leaf) can be seen. Share
+  /// counts them as explained; they are no face to pair the plane with.
+  std::vector<Along> InWallDepth(const WallSegment& plane, const Pose2& pose, int storey) const;
 
  private:
   struct Surface {
@@ -69,6 +74,7 @@ class SurfaceEvidence {
     Eigen::Vector2d a, b;
     Eigen::Vector2d normal;  // out of the wall's material
     double d;                // normal . p on the surface
+    double depth{0.0};       // its wall's thickness behind it (0: unknown)
   };
   struct Storey {
     std::vector<Surface> surfaces;
@@ -77,6 +83,10 @@ class SurfaceEvidence {
     // normal and offset.
     std::vector<std::pair<Eigen::Vector2d, double>> outline;
   };
+
+  /// AlongSurfaces (in_depth false) or InWallDepth (true).
+  std::vector<Along> Stretches(const WallSegment& plane, const Pose2& pose, int storey,
+                               bool in_depth) const;
 
   double cos_angle_{1.0};
   double offset_tolerance_{0.3};

@@ -42,6 +42,12 @@ bool InOpening(const std::vector<Wall2D>& walls, const Eigen::Vector2d& position
 /// face mapped twice before the planes were merged): normals within 3°, offsets within 0.1 m.
 bool SameLine(const Wall2D& a, const Wall2D& b);
 
+/// Whether `behind` is seen through an opening of `front`: facing the same way, parallel, set
+/// back behind it by 0.1-0.6 m, in a wall's depth (a window's pane or reveal, a door leaf in its
+/// frame, an alcove), and not a wall `front` merely stands before (a cupboard's front whose
+/// whole seen extent lies along the wall behind it).
+bool SeenThroughOpening(const Wall2D& front, const Wall2D& behind);
+
 /// The wall with that id, nullptr if none.
 const Wall2D* FindWall(const std::vector<Wall2D>& walls, int id);
 

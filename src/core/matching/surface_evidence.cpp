@@ -11,9 +11,10 @@ namespace is_graphs {
 namespace matching {
 namespace {
 
-constexpr double kCell = 1.0;        // m
-constexpr double kSampleStep = 0.5;  // m along an S-plane when looking up cells
-constexpr double kEndSlack = 0.2;    // m an A-surface's ends are extended by (noise, deviation)
+constexpr double kCell = 1.0;         // m
+constexpr double kSampleStep = 0.5;   // m along an S-plane when looking up cells
+constexpr double kEndSlack = 0.2;     // m an A-surface's ends are extended by (noise, deviation)
+constexpr double kDepthSlack = 0.05;  // m beyond a wall's thickness still in its depth (noise)
 
 long long CellKey(long long ix, long long iy) { return (ix << 32) ^ (iy & 0xffffffffLL); }
 long long CellOf(double v) { return static_cast<long long>(std::floor(v / kCell)); }
@@ -76,13 +77,18 @@ SurfaceEvidence::SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfi
     // may stand up through the next).
     const std::set<int> on = agraph::StoreysOfSurface(graph, s);
     const Eigen::Vector2d unit = n.normalized();
-    const double pad = offset_tolerance_ + kEndSlack;
+    const double depth = s.wall >= 0 && s.wall < static_cast<int>(graph.walls.size()) &&
+                                 std::isfinite(graph.walls[s.wall].thickness)
+                             ? std::clamp(graph.walls[s.wall].thickness, 0.0, 1.0)
+                             : 0.0;
+    const double pad = std::max(offset_tolerance_, depth + kDepthSlack) + kEndSlack;
     const Eigen::Vector2d lo = s.start.cwiseMin(s.end).array() - pad;
     const Eigen::Vector2d hi = s.start.cwiseMax(s.end).array() + pad;
     for (int id : on) {
       Storey& storey = storeys_[id];
       const int index = static_cast<int>(storey.surfaces.size());
-      storey.surfaces.push_back({s.id, s.start, s.end, unit, unit.dot(0.5 * (s.start + s.end))});
+      storey.surfaces.push_back(
+          {s.id, s.start, s.end, unit, unit.dot(0.5 * (s.start + s.end)), depth});
       // Every cell within offset_tolerance of the segment (its bounding box, widened).
       for (long long ix = CellOf(lo.x()); ix <= CellOf(hi.x()); ++ix)
         for (long long iy = CellOf(lo.y()); iy <= CellOf(hi.y()); ++iy)
@@ -105,6 +111,18 @@ SurfaceEvidence::SurfaceEvidence(const agraph::AGraph& graph, const MatcherConfi
 std::vector<SurfaceEvidence::Along> SurfaceEvidence::AlongSurfaces(const WallSegment& plane,
                                                                    const Pose2& pose,
                                                                    int storey) const {
+  return Stretches(plane, pose, storey, false);
+}
+
+std::vector<SurfaceEvidence::Along> SurfaceEvidence::InWallDepth(const WallSegment& plane,
+                                                                 const Pose2& pose,
+                                                                 int storey) const {
+  return Stretches(plane, pose, storey, true);
+}
+
+std::vector<SurfaceEvidence::Along> SurfaceEvidence::Stretches(const WallSegment& plane,
+                                                               const Pose2& pose, int storey,
+                                                               bool in_depth) const {
   std::vector<Along> out;
   const auto found = storeys_.find(storey);
   if (found == storeys_.end() || plane.length <= 0.0) return out;
@@ -126,8 +144,11 @@ std::vector<SurfaceEvidence::Along> SurfaceEvidence::AlongSurfaces(const WallSeg
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   for (int i : candidates) {
     const Surface& s = st.surfaces[i];
-    if (s.normal.dot(n) < cos_angle_ || std::abs(s.normal.dot(middle) - s.d) > offset_tolerance_)
-      continue;
+    if (s.normal.dot(n) < cos_angle_) continue;
+    const double offset = s.normal.dot(middle) - s.d;  // < 0: behind the face
+    const bool on = std::abs(offset) <= offset_tolerance_;
+    const bool deep = offset < -offset_tolerance_ && offset >= -(s.depth + kDepthSlack);
+    if (in_depth ? !deep : !on) continue;
     double u0 = (s.a - a).dot(along), u1 = (s.b - a).dot(along);
     if (u0 > u1) std::swap(u0, u1);
     u0 = std::max(u0 - kEndSlack, 0.0);
@@ -142,6 +163,7 @@ double SurfaceEvidence::Share(const WallSegment& plane, const Pose2& pose, int s
   // The stretches of the plane (as distances from a along it) that lie on an A-surface.
   std::vector<std::pair<double, double>> covered;
   for (const Along& s : AlongSurfaces(plane, pose, storey)) covered.emplace_back(s.from, s.to);
+  for (const Along& s : InWallDepth(plane, pose, storey)) covered.emplace_back(s.from, s.to);
   std::sort(covered.begin(), covered.end());
   double total = 0.0, reach = 0.0;
   for (const auto& [u0, u1] : covered) {

@@ -42,6 +42,8 @@ namespace {
 constexpr double kRectangleSlack = 0.2;  // m: a hit this far outside a rectangle is on it
 constexpr double kCornerSlack = 0.3;     // m: a wall's seen extent, grown by this (corners)
 constexpr double kMinDividing = 0.5;     // m: the least of a wall seen across a rectangle
+constexpr double kMinSetback = 0.1;      // m: behind a wall by this (SameLine's offset) ...
+constexpr double kMaxSetback = 0.6;      // m: ... to this (a thick exterior wall): in its depth
 
 Eigen::Vector2d Along(const Wall2D& w) { return Eigen::Vector2d(-w.normal.y(), w.normal.x()); }
 
@@ -59,14 +61,15 @@ Eigen::Vector2d Corner(const Wall2D& p, const Wall2D& q) {
 }
 
 /// The widest stretch of [s0, s1] along `line` that no wall on that line covers, each wall's
-/// seen extent grown by `slack` at both ends; the length covered in `covered_length`.
+/// seen extent grown by `slack` at both ends; the length covered in `covered_length`. With
+/// `openings`, what is seen through an opening of `line` (SeenThroughOpening) covers it too.
 double LargestGap(const std::vector<Wall2D>& walls, const Wall2D& line, double s0, double s1,
-                  double slack, double* covered_length = nullptr) {
+                  double slack, double* covered_length = nullptr, bool openings = false) {
   if (s0 > s1) std::swap(s0, s1);
   const Eigen::Vector2d along = Along(line);
   std::vector<std::pair<double, double>> covered;
   for (const Wall2D& other : walls) {
-    if (!SameLine(other, line)) continue;
+    if (!SameLine(other, line) && !(openings && SeenThroughOpening(line, other))) continue;
     const auto [lo, hi] = SeenExtent(other, along);
     covered.emplace_back(lo - slack, hi + slack);
   }
@@ -90,8 +93,9 @@ double LargestOpening(const std::vector<Wall2D>& walls, const int four[4]) {
     const Wall2D& w = walls[four[side]];
     const int* across = side < 2 ? four + 2 : four;  // the other pair bounds this side
     const Eigen::Vector2d along = Along(w);
-    largest = std::max(largest, LargestGap(walls, w, along.dot(Corner(w, walls[across[0]])),
-                                           along.dot(Corner(w, walls[across[1]])), kCornerSlack));
+    largest = std::max(
+        largest, LargestGap(walls, w, along.dot(Corner(w, walls[across[0]])),
+                            along.dot(Corner(w, walls[across[1]])), kCornerSlack, nullptr, true));
   }
   return largest;
 }
@@ -159,6 +163,16 @@ bool SegmentsCross(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const E
 }
 
 }  // namespace
+
+bool SeenThroughOpening(const Wall2D& front, const Wall2D& behind) {
+  if (front.normal.dot(behind.normal) <= std::cos(3.0 * M_PI / 180.0)) return false;
+  const double setback = front.d - behind.d;  // normals point into the room
+  if (setback < kMinSetback || setback > kMaxSetback) return false;
+  const Eigen::Vector2d along = Along(front);
+  const auto [f0, f1] = SeenExtent(front, along);
+  const auto [b0, b1] = SeenExtent(behind, along);
+  return f0 < b0 - kCornerSlack || f1 > b1 + kCornerSlack;
+}
 
 bool SameSpace(const std::vector<Wall2D>& walls, const std::vector<int>& a_walls,
                const Eigen::Vector2d& a_center, const std::vector<int>& b_walls,
@@ -330,14 +344,24 @@ std::optional<RoomCandidate> DetectRoom(const std::vector<Wall2D>& walls,
       for (int k = 0; k < n; ++k) {
         const int h = fan.hit[k];
         if (h < 0) continue;
-        const int side = static_cast<int>(
+        int side = static_cast<int>(
             std::find_if(four, four + 4, [&](int w) { return SameLine(walls[h], walls[w]); }) -
             four);
+        // A hit in the depth of a side (a pane, a reveal seen through its opening) is that
+        // side's: the room is bounded by the wall's face, not by what is set in it.
+        const bool through = side == 4 && [&] {
+          side = static_cast<int>(
+              std::find_if(four, four + 4,
+                           [&](int w) { return SeenThroughOpening(walls[w], walls[h]); }) -
+              four);
+          return side < 4;
+        }();
         if (side == 4) continue;
         const Eigen::Vector2d hit = position + fan.range[k] * fan.directions[k];
         bool inside = true;
-        for (int w : four)
-          inside = inside && walls[w].normal.dot(hit) - walls[w].d > -kRectangleSlack;
+        for (int s = 0; s < 4; ++s)
+          inside = inside && ((through && s == side) ||
+                              walls[four[s]].normal.dot(hit) - walls[four[s]].d > -kRectangleSlack);
         if (!inside) continue;
         ++rays;
         ++per_wall[side];
