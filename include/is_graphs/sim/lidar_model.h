@@ -53,7 +53,12 @@ class LidarModel {
   /// The measured range for a surface at `true_range` hit at incidence cos `cos_incidence`:
   /// false when there is no return (out of range, grazing, dropout), else `range` is set
   /// (Gaussian noise, quantized to the packet's distance unit).
-  bool Measure(double true_range, double cos_incidence, ScanNoise& noise, double* range) const;
+  bool Measure(double true_range, double cos_incidence, ScanNoise& noise, double* range) const {
+    return Measure(true_range, cos_incidence, config_.range_noise_stddev, noise, range);
+  }
+  /// As above with the noise's standard deviation `stddev` (m) instead of the config's.
+  bool Measure(double true_range, double cos_incidence, double stddev, ScanNoise& noise,
+               double* range) const;
   /// Diffuse intensity on the driver's scale (0..spec.intensity_scale) from reflectivity (0..1)
   /// and incidence.
   float Intensity(double reflectivity, double cos_incidence, ScanNoise& noise) const;

@@ -12,7 +12,8 @@ enum RandomStream : std::uint64_t {
   kStreamClutter = 1,
   kStreamScan = 2,  // index: the scan number
   kStreamOdometry = 3,
-  kStreamGlass = 4,  // index: the scan number
+  kStreamGlass = 4,          // index: the scan number
+  kStreamSensorEffects = 5,  // index: the scan number (sensor_effects.h: one sub-stream an effect)
 };
 
 /// SplitMix64 finalizer: a well-mixed 64-bit value of x.

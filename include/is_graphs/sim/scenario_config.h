@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "is_graphs/sim/sensor_effects_config.h"
+
 // The configuration of one simulated scenario (a bags/*.yaml file): building, trajectory,
 // sensor, gait, odometry drift, scene changes, seed. Plain structs with defaults; each has a
 // Validate() returning "" when valid, else an error naming the offending field by its YAML path
@@ -45,6 +47,7 @@ struct LidarConfig {
   double azimuth_offset_deg{0.0};      // azimuth (clockwise, from +x) of each scan's first firing
   // Sensor outages (increasing, disjoint): a scan whose sweep overlaps one is not published.
   std::vector<TimeWindow> dropouts;
+  SensorEffectsConfig effects;  // `effects:` range noise, mixed pixels, dark surfaces, ghosts
   std::string Validate() const;
   /// The model's defaults: vlp16 as above; os1_64: 1024 columns, 0.5-120 m, σ 1 cm, 1 mm;
   /// hesai_xt32: 2000 columns (0.18°), 0.05-120 m, σ 1 cm, 4 mm.
@@ -206,7 +209,8 @@ struct SceneConfig {
   RandomClutterConfig random_clutter;
   double wall_reflectivity{0.45};
   double floor_reflectivity{0.25};
-  GlassConfig glass;                         // `glass:` present: windows let beams through
+  GlassConfig glass;           // `glass:` present: windows let beams through
+  bool polished_floor{false};  // floors (slabs) mirror beams: SceneMesh::polished, ghosts
   std::vector<OutsideObjectConfig> outside;  // the world outside: none by default
 };
 

@@ -17,8 +17,9 @@ namespace sim {
 struct SceneMesh {
   std::vector<Eigen::Vector3f> vertices;
   std::vector<Eigen::Vector3i> triangles;
-  std::vector<float> reflectivity;  // per triangle
-  std::vector<std::uint8_t> glass;  // per triangle, 1: a pane (GlassConfig); empty: no glass
+  std::vector<float> reflectivity;     // per triangle
+  std::vector<std::uint8_t> glass;     // per triangle, 1: a pane (GlassConfig); empty: no glass
+  std::vector<std::uint8_t> polished;  // per triangle, 1: a polished floor; empty: none
 
   void AddTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                    float reflectivity);

@@ -28,7 +28,7 @@ LidarModel::LidarModel(const LidarConfig& config)
 
 double LidarModel::Elevation(int laser) const { return spec_.elevation_deg[laser] * M_PI / 180.0; }
 
-bool LidarModel::Measure(double true_range, double cos_incidence, ScanNoise& noise,
+bool LidarModel::Measure(double true_range, double cos_incidence, double stddev, ScanNoise& noise,
                          double* range) const {
   if (!(true_range >= config_.min_range && true_range <= config_.max_range)) return false;
   if (cos_incidence < cos_max_incidence_) return false;
@@ -36,9 +36,7 @@ bool LidarModel::Measure(double true_range, double cos_incidence, ScanNoise& noi
     return false;
   }
   double r = true_range;
-  if (config_.range_noise_stddev > 0.0) {
-    r += config_.range_noise_stddev * noise.Normal();
-  }
+  if (stddev > 0.0) r += stddev * noise.Normal();
   if (config_.range_resolution > 0.0) {
     r = std::round(r / config_.range_resolution) * config_.range_resolution;
   }

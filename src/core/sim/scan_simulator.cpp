@@ -6,6 +6,7 @@
 
 #include "is_graphs/sim/glass.h"
 #include "is_graphs/sim/random.h"
+#include "is_graphs/sim/sensor_effects.h"
 
 namespace is_graphs {
 namespace sim {
@@ -87,6 +88,15 @@ LidarScan ScanSimulator::Simulate(std::uint64_t index, double stamp) const {
   scene_.Intersect(rays, &hits);
   PassThroughGlass(scene_, mesh_, glass_, rays, &hits, StreamSeed(seed_, kStreamGlass, index));
 
+  // Sensor effects (sensor.effects): what each beam returns instead of its hit, from their own
+  // stream; off, the scan is as without them.
+  const SensorEffectsConfig& effects = model_.config().effects;
+  thread_local std::vector<EffectReturn> returns;
+  if (effects.Any()) {
+    ApplySensorEffects(scene_, mesh_, effects, rays, hits,
+                       StreamSeed(seed_, kStreamSensorEffects, index), &returns);
+  }
+
   ScanNoise noise(StreamSeed(seed_, kStreamScan, index));
   LidarScan scan;
   scan.stamp = stamp;
@@ -94,9 +104,21 @@ LidarScan ScanSimulator::Simulate(std::uint64_t index, double stamp) const {
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const RayHit& hit = hits[i];
     if (hit.triangle < 0) continue;
-    const double cos_incidence = std::abs(hit.normal.dot(rays[i].direction));
+    double distance = hit.distance;
+    double cos_incidence = std::abs(hit.normal.dot(rays[i].direction));
+    double reflectivity = mesh_.reflectivity[hit.triangle];
+    bool dropped = false;
+    if (effects.Any()) {
+      distance = returns[i].distance;
+      cos_incidence = returns[i].cos_incidence;
+      reflectivity = returns[i].reflectivity;
+      dropped = returns[i].dropped;
+    }
+    const double stddev = effects.range_noise.enabled
+                              ? RangeNoiseStddev(effects.range_noise, distance, cos_incidence)
+                              : model_.config().range_noise_stddev;
     double range = 0.0;
-    if (!model_.Measure(hit.distance, cos_incidence, noise, &range)) continue;
+    if (!model_.Measure(distance, cos_incidence, stddev, noise, &range)) continue;
     const int k = beam[i] / lasers;
     const int laser = beam[i] % lasers;
     const Eigen::Vector3f p = static_cast<float>(range) * model_.Direction(k, laser);
@@ -104,7 +126,8 @@ LidarScan ScanSimulator::Simulate(std::uint64_t index, double stamp) const {
     point.x = p.x();
     point.y = p.y();
     point.z = p.z();
-    point.intensity = model_.Intensity(mesh_.reflectivity[hit.triangle], cos_incidence, noise);
+    point.intensity = model_.Intensity(reflectivity, cos_incidence, noise);
+    if (dropped) continue;  // after its draws: a lost return does not shift the others' noise
     point.ring = model_.Ring(laser);
     point.time = static_cast<float>(model_.PulseTime(k, laser));
     point.column = static_cast<std::uint32_t>(k);

@@ -139,7 +139,7 @@ std::string LidarConfig::Validate() const {
                 Range("sensor.dropout_probability", dropout_probability, 0.0, 1.0),
                 Range("sensor.intensity_noise_stddev", intensity_noise_stddev, 0.0, 100.0),
                 Range("sensor.azimuth_offset_deg", azimuth_offset_deg, -360.0, 360.0, "deg"),
-                Dropouts(dropouts)});
+                Dropouts(dropouts), effects.Validate()});
 }
 
 std::string GaitConfig::Validate() const {
@@ -203,6 +203,8 @@ std::string ScenarioConfig::Validate() const {
   std::string e = First({trajectory.Validate(), kidnap ? kidnap->Validate() : "", sensor.Validate(),
                          gait.Validate(), odometry.Validate()});
   if (!e.empty()) return e;
+  if (sensor.effects.ghosts.enabled && !scene.polished_floor)
+    return "sensor.effects.ghosts: needs `scene.polished_floor: true` (no surface to mirror)";
   if (duration > 0.0) {  // (with duration 0 the route's end is known only once planned)
     std::ostringstream out;
     if (kidnap && kidnap->time >= duration) {

@@ -71,7 +71,7 @@ void ParseSensor(const YAML::Node& n, LidarConfig* s) {
   CheckMap(n, f,
            {"model", "rotation_rate_hz", "azimuth_resolution_deg", "min_range", "max_range",
             "range_noise_stddev", "range_resolution", "max_incidence_deg", "dropout_probability",
-            "intensity_noise_stddev", "azimuth_offset_deg", "dropouts"});
+            "intensity_noise_stddev", "azimuth_offset_deg", "dropouts", "effects"});
   if (n["model"]) {
     const std::string name = As<std::string>(n["model"], f + ".model", "a string");
     const auto model = ParseLidarModel(name);
@@ -97,6 +97,7 @@ void ParseSensor(const YAML::Node& n, LidarConfig* s) {
       s->dropouts.push_back({v[0], v[1]});
     }
   }
+  if (n["effects"]) ParseSensorEffects(n["effects"], &s->effects);
 }
 
 void ParseGait(const YAML::Node& n, GaitConfig* g) {

@@ -110,7 +110,7 @@ void ParseScene(const YAML::Node& n, SceneConfig* s) {
   const std::string f = "scene";
   CheckMap(n, f,
            {"drop_classes", "deviations", "clutter", "random_clutter", "wall_reflectivity",
-            "floor_reflectivity", "glass", "outside"});
+            "floor_reflectivity", "glass", "outside", "polished_floor"});
   if (n["drop_classes"]) s->drop_classes = Strings(n["drop_classes"], f + ".drop_classes");
   for (const char* list : {"deviations", "clutter", "outside"}) {
     if (n[list] && !n[list].IsSequence()) Fail(Join(f, list), "must be a list");
@@ -143,6 +143,7 @@ void ParseScene(const YAML::Node& n, SceneConfig* s) {
   }
   Get(n, f, "wall_reflectivity", &s->wall_reflectivity);
   Get(n, f, "floor_reflectivity", &s->floor_reflectivity);
+  Get(n, f, "polished_floor", &s->polished_floor);
   if (n["glass"]) {  // present (even `glass: {}`): on, with the defaults for what is not given
     const YAML::Node g = n["glass"];
     const std::string gf = f + ".glass";

@@ -186,6 +186,7 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
   const std::set<std::string> drop(config.drop_classes.begin(), config.drop_classes.end());
   if (config.glass.enabled)
     scene.glass.assign(scene.triangles.size(), 0);  // walls added: not glass
+  if (config.polished_floor) scene.polished.assign(scene.triangles.size(), 0);
   std::set<long> seen_walls;
   for (std::size_t t = 0; t < bim.triangles.size(); ++t) {
     const int object = bim.triangle_object.empty() ? -1 : bim.triangle_object[t];
@@ -224,6 +225,7 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
                                                      : 0.4);
     const Eigen::Vector3i& tri = bim.triangles[t];
     if (config.glass.enabled) scene.glass.push_back(config.glass.IsGlass(cls) ? 1 : 0);
+    if (config.polished_floor) scene.polished.push_back(is_floor && cls != "IfcSite" ? 1 : 0);
     scene.AddTriangle(built(bim.vertices[tri[0]]), built(bim.vertices[tri[1]]),
                       built(bim.vertices[tri[2]]), refl);
   }
@@ -265,6 +267,12 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
   const auto outside = AddOutsideWorld(&scene, graph, config.outside);
   if (!outside.ok()) return R::Error(outside.error());
   log.lines.insert(log.lines.end(), outside.value().begin(), outside.value().end());
+  if (config.polished_floor) {
+    scene.polished.resize(scene.triangles.size(), 0);  // clutter: matt
+    const long n = std::count(scene.polished.begin(), scene.polished.end(), 1);
+    log.lines.push_back("scene.polished_floor: " + std::to_string(n) + " of " +
+                        std::to_string(scene.triangles.size()) + " triangles are polished floor");
+  }
   if (config.glass.enabled) {
     scene.glass.resize(scene.triangles.size(), 0);  // clutter: not glass
     const long panes = std::count(scene.glass.begin(), scene.glass.end(), 1);

@@ -106,6 +106,8 @@ inline std::vector<std::string> Strings(const YAML::Node& node, const std::strin
 
 /// The `scene` section.
 void ParseScene(const YAML::Node& node, SceneConfig* scene);
+/// The `sensor.effects` section.
+void ParseSensorEffects(const YAML::Node& node, SensorEffectsConfig* effects);
 
 }  // namespace yaml_fields
 }  // namespace sim
