@@ -119,10 +119,13 @@ def test_duplex_hint_in_the_walked_unit_localizes_there(duplex):
     assert 0.0 <= hint["seconds_to_localize_after_hint"] <= 2.0
     assert not hint["rejected"] and hint["in_force_at_end"]
     assert r.run["wrong_matches"] == 0 and len(r.run["unique_matches"]) > 5
-    # Right unit; the pose is as good as the evidence seen (one room, one axis of it on a wall
-    # 0.37 m off: docs/localization_services.md), not the hint's.
+    # Right unit; the pose is as good as the evidence seen, not the hint's: until the living
+    # room's inner face is seen beside its glazing (set 0.37 m deep in the wall), a motion that
+    # puts the pane on the face fits too (docs/localization_services.md); from 20 s on, the face.
     rmse, worst, _ = ape(r, 0.0)
-    assert rmse < 0.45 and worst < 0.5
+    assert rmse < 0.3 and worst < 0.5
+    late, _, n = ape(r, 20.0)
+    assert late < 0.03 and n > 50, f"x-y APE RMSE {late:.3f} m over {n} poses from 20 s"
 
 
 def test_duplex_hint_in_the_twin_unit_decides_for_the_twin(duplex):
