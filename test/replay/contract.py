@@ -29,6 +29,7 @@ DEFAULTS = {
     "max_ape_z_rmse": 0.05, "max_wrong_z": 1.0, "true_storey_id": -1, "storey_elevations": [],
     "storey_in_doubt": False, "ambiguous_names_storey": False, "kidnap_window": 0.0,
     "max_seconds_to_relocalize": 0.0, "max_seconds_to_ambiguous": 0.0,
+    "max_metres_to_localize": 0.0,  # 0: unchecked; replay only (the distance walked before)
 }
 
 

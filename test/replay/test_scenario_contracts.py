@@ -53,6 +53,10 @@ def test_localizes_in_time(case):
     assert r.first_localized <= c["max_seconds_to_localize"], (
         f"[{c['scenario']}] localized at {r.first_localized:.2f} s, bound "
         f"{c['max_seconds_to_localize']} s")
+    if c["max_metres_to_localize"] > 0:
+        assert r.run["distance_to_localize"] <= c["max_metres_to_localize"], (
+            f"[{c['scenario']}] localized after {r.run['distance_to_localize']:.2f} m walked, "
+            f"bound {c['max_metres_to_localize']} m")
     if c["kidnap_window"] <= 0 or c["max_seconds_to_relocalize"] > 0:
         assert r.run["localized_at_end"], f"[{c['scenario']}] not localized at the end"
 

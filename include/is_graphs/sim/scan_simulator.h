@@ -7,6 +7,7 @@
 #include "is_graphs/sim/embree_scene.h"
 #include "is_graphs/sim/gait.h"
 #include "is_graphs/sim/lidar_model.h"
+#include "is_graphs/sim/movers.h"
 #include "is_graphs/sim/scene.h"
 
 namespace is_graphs {
@@ -51,6 +52,8 @@ class ScanSimulator {
   double MaskedFraction() const;
   /// Beams pass the scene's panes (mesh.glass) as `glass` says; scan i draws from its own stream.
   void SetGlass(const GlassConfig& glass) { glass_ = glass; }
+  /// People, carts and doors placed at each firing's time (nullptr or empty: none); not owned.
+  void SetMovers(const Movers* movers) { movers_ = movers; }
 
  private:
   const EmbreeScene& scene_;
@@ -59,7 +62,8 @@ class ScanSimulator {
   const RobotMotion& motion_;
   Eigen::Isometry3d base_T_sensor_;
   std::uint64_t seed_;
-  GlassConfig glass_;                 // disabled unless SetGlass
+  GlassConfig glass_;  // disabled unless SetGlass
+  const Movers* movers_{nullptr};
   std::vector<std::uint8_t> masked_;  // per (firing, laser)
 };
 

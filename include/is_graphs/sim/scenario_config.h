@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "is_graphs/sim/movers_config.h"
 #include "is_graphs/sim/sensor_effects_config.h"
 
 // The configuration of one simulated scenario (a bags/*.yaml file): building, trajectory,
@@ -212,6 +213,8 @@ struct SceneConfig {
   GlassConfig glass;           // `glass:` present: windows let beams through
   bool polished_floor{false};  // floors (slabs) mirror beams: SceneMesh::polished, ghosts
   std::vector<OutsideObjectConfig> outside;  // the world outside: none by default
+  std::vector<MoverConfig> people;           // people and carts who walk: none by default
+  std::vector<SwingingDoorConfig> doors;     // doors that swing: none by default
 };
 
 struct ScenarioConfig {

@@ -12,6 +12,7 @@
 #include "is_graphs/sim/embree_scene.h"
 #include "is_graphs/sim/gait.h"
 #include "is_graphs/sim/lidar_model.h"
+#include "is_graphs/sim/movers.h"
 #include "is_graphs/sim/odometry_drift.h"
 #include "is_graphs/sim/route_planner.h"
 #include "is_graphs/sim/scan_simulator.h"
@@ -39,6 +40,7 @@ struct Simulation {
   // (the same but for the Ouster: base_T_mount * spec().mount_T_points).
   Eigen::Isometry3d base_T_mount{Eigen::Isometry3d::Identity()};
   Eigen::Isometry3d base_T_sensor{Eigen::Isometry3d::Identity()};
+  Movers movers;  // people, carts and doors that move (scene.people, scene.doors)
   std::unique_ptr<ScanSimulator> scans;
   double duration{0.0};          // of the bag, s
   std::vector<std::string> log;  // what was built, for the user

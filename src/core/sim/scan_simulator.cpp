@@ -97,22 +97,53 @@ LidarScan ScanSimulator::Simulate(std::uint64_t index, double stamp) const {
                        StreamSeed(seed_, kStreamSensorEffects, index), &returns);
   }
 
+  // Movers (scene.people, scene.doors), where they stand at each firing's time: a beam that
+  // meets one before what it hit (or where it hit nothing) returns off it.
+  thread_local std::vector<float> mover_distance;
+  thread_local std::vector<Eigen::Vector3f> mover_normal;
+  thread_local std::vector<float> mover_reflectivity;
+  const bool movers = movers_ && !movers_->empty();
+  if (movers) {
+    mover_distance.assign(rays.size(), std::numeric_limits<float>::infinity());
+    mover_normal.resize(rays.size());
+    mover_reflectivity.resize(rays.size());
+    std::vector<MovingBody> bodies;
+    int firing = -1;
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+      const int k = beam[i] / lasers;
+      if (k != firing) bodies = movers_->BodiesAt(stamp + model_.FiringTime(k)), firing = k;
+      const float reach =
+          hits[i].triangle >= 0
+              ? (effects.Any() ? static_cast<float>(returns[i].distance) : hits[i].distance)
+              : rays[i].t_max;
+      IntersectBodies(bodies, rays[i], reach, &mover_distance[i], &mover_normal[i],
+                      &mover_reflectivity[i]);
+    }
+  }
+
   ScanNoise noise(StreamSeed(seed_, kStreamScan, index));
   LidarScan scan;
   scan.stamp = stamp;
   scan.points.reserve(rays.size());
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const RayHit& hit = hits[i];
-    if (hit.triangle < 0) continue;
-    double distance = hit.distance;
-    double cos_incidence = std::abs(hit.normal.dot(rays[i].direction));
-    double reflectivity = mesh_.reflectivity[hit.triangle];
+    const bool on_mover = movers && std::isfinite(mover_distance[i]);
+    if (hit.triangle < 0 && !on_mover) continue;
+    double distance = 0.0, cos_incidence = 0.0, reflectivity = 0.0;
     bool dropped = false;
-    if (effects.Any()) {
+    if (on_mover) {
+      distance = mover_distance[i];
+      cos_incidence = std::abs(mover_normal[i].dot(rays[i].direction));
+      reflectivity = mover_reflectivity[i];
+    } else if (effects.Any()) {
       distance = returns[i].distance;
       cos_incidence = returns[i].cos_incidence;
       reflectivity = returns[i].reflectivity;
       dropped = returns[i].dropped;
+    } else {
+      distance = hit.distance;
+      cos_incidence = std::abs(hit.normal.dot(rays[i].direction));
+      reflectivity = mesh_.reflectivity[hit.triangle];
     }
     const double stddev = effects.range_noise.enabled
                               ? RangeNoiseStddev(effects.range_noise, distance, cos_incidence)

@@ -269,6 +269,14 @@ std::string ScenarioConfig::Validate() const {
     if (!e.empty()) return e;
     if (!o.position.allFinite()) return f + ".position: must be finite";
   }
+  for (std::size_t i = 0; i < scene.people.size(); ++i) {
+    e = scene.people[i].Validate("scene.people[" + std::to_string(i) + "]");
+    if (!e.empty()) return e;
+  }
+  for (std::size_t i = 0; i < scene.doors.size(); ++i) {
+    e = scene.doors[i].Validate("scene.doors[" + std::to_string(i) + "]");
+    if (!e.empty()) return e;
+  }
   if (scene.random_clutter.count < 0 || scene.random_clutter.count > 10000) {
     return "scene.random_clutter.count: must be in [0, 10000]";
   }

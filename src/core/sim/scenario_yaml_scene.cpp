@@ -1,4 +1,5 @@
-// The `scene` section of a scenario YAML: mesh classes to drop, BIM deviations, clutter.
+// The `scene` section of a scenario YAML: mesh classes to drop, BIM deviations, clutter, glass,
+// the world outside, people who walk and doors that swing.
 #include "yaml_fields.h"
 
 namespace is_graphs {
@@ -104,15 +105,43 @@ OutsideObjectConfig ParseOutside(const YAML::Node& n, const std::string& f) {
   return o;
 }
 
+MoverConfig ParseMover(const YAML::Node& n, const std::string& f) {
+  CheckMap(n, f, {"type", "rooms", "waypoints", "speed", "start", "reflectivity"});
+  MoverConfig m;
+  Get(n, f, "type", &m.type);
+  if (n["rooms"]) m.rooms = Strings(n["rooms"], f + ".rooms");
+  if (n["waypoints"]) {
+    if (!n["waypoints"].IsSequence()) Fail(f + ".waypoints", "must be a list of [x, y]");
+    for (std::size_t i = 0; i < n["waypoints"].size(); ++i)
+      m.waypoints.push_back(Vec2(n["waypoints"][i], f + ".waypoints[" + std::to_string(i) + "]"));
+  }
+  Get(n, f, "speed", &m.speed);
+  Get(n, f, "start", &m.start);
+  Get(n, f, "reflectivity", &m.reflectivity);
+  return m;
+}
+
+SwingingDoorConfig ParseDoor(const YAML::Node& n, const std::string& f) {
+  CheckMap(n, f, {"between", "doorway", "period", "phase", "open_deg", "hold_distance"});
+  SwingingDoorConfig d;
+  if (n["between"]) d.between = Strings(n["between"], f + ".between");
+  Get(n, f, "doorway", &d.doorway);
+  Get(n, f, "period", &d.period);
+  Get(n, f, "phase", &d.phase);
+  Get(n, f, "open_deg", &d.open_deg);
+  Get(n, f, "hold_distance", &d.hold_distance);
+  return d;
+}
+
 }  // namespace
 
 void ParseScene(const YAML::Node& n, SceneConfig* s) {
   const std::string f = "scene";
   CheckMap(n, f,
            {"drop_classes", "deviations", "clutter", "random_clutter", "wall_reflectivity",
-            "floor_reflectivity", "glass", "outside", "polished_floor"});
+            "floor_reflectivity", "glass", "outside", "polished_floor", "people", "doors"});
   if (n["drop_classes"]) s->drop_classes = Strings(n["drop_classes"], f + ".drop_classes");
-  for (const char* list : {"deviations", "clutter", "outside"}) {
+  for (const char* list : {"deviations", "clutter", "outside", "people", "doors"}) {
     if (n[list] && !n[list].IsSequence()) Fail(Join(f, list), "must be a list");
   }
   for (std::size_t i = 0; n["deviations"] && i < n["deviations"].size(); ++i) {
@@ -125,6 +154,10 @@ void ParseScene(const YAML::Node& n, SceneConfig* s) {
   for (std::size_t i = 0; n["outside"] && i < n["outside"].size(); ++i) {
     s->outside.push_back(ParseOutside(n["outside"][i], f + ".outside[" + std::to_string(i) + "]"));
   }
+  for (std::size_t i = 0; n["people"] && i < n["people"].size(); ++i)
+    s->people.push_back(ParseMover(n["people"][i], f + ".people[" + std::to_string(i) + "]"));
+  for (std::size_t i = 0; n["doors"] && i < n["doors"].size(); ++i)
+    s->doors.push_back(ParseDoor(n["doors"][i], f + ".doors[" + std::to_string(i) + "]"));
   if (n["random_clutter"]) {
     const YAML::Node r = n["random_clutter"];
     const std::string rf = f + ".random_clutter";

@@ -317,6 +317,18 @@ Result<std::unique_ptr<Simulation>> PrepareSimulation(const ScenarioConfig& conf
       *sim->embree, sim->scene, *sim->sensor, *sim->motion, sim->base_T_sensor,
       BodyBox{config.body_center, config.body_size}, config.seed);
   sim->scans->SetGlass(config.scene.glass);
+  if (!config.scene.people.empty() || !config.scene.doors.empty()) {
+    const RobotMotion* motion = sim->motion.get();
+    Result<Movers> movers =
+        Movers::Create(config.scene.people, config.scene.doors, sim->graph, sim->storey,
+                       sim->floor_z, *sim->embree, [motion](double t) {
+                         return Eigen::Vector2d(motion->BasePose(t).translation().head<2>());
+                       });
+    if (!movers.ok()) return R::Error(movers.error());
+    sim->movers = std::move(movers).value();
+    for (const std::string& line : sim->movers.log()) sim->log.push_back(line);
+    sim->scans->SetMovers(&sim->movers);
+  }
   return R::Ok(std::move(sim));
 }
 
