@@ -237,7 +237,7 @@ def evaluate_scenario(name, yaml_path, bag, note, replay, out_dir):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("scenarios", nargs="*",
-                        help="scenario YAMLs (default: bags/D*, R*, H*, S*, M*, G*)")
+                        help="scenario YAMLs (default: bags/D*, R*, H*, S*, M*, G*, E*, P*, A*)")
     parser.add_argument("--out", default=os.path.join(REPO, ".ws", "evaluate"))
     parser.add_argument("--replay",
                         default=os.path.join(REPO, ".ws", "devel", "lib", "is_graphs",
@@ -246,7 +246,8 @@ def main():
     from evaluation_report import write_reports
 
     yamls = args.scenarios or sorted(
-        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml", "S*.yaml", "M*.yaml", "G*.yaml")
+        y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml", "S*.yaml", "M*.yaml", "G*.yaml", "E*.yaml",
+                        "P*.yaml", "A*.yaml")
         for y in glob.glob(os.path.join(REPO, "bags", pattern)) if not y.endswith("_short.yaml"))
     if not os.access(args.replay, os.X_OK):
         print(f"evaluate: error: {args.replay} not built (make build)", file=sys.stderr)

@@ -249,6 +249,10 @@ def test_dropouts_and_kidnap_in_the_bag(tmp_path):
     ("building: bim/tower.ifc\nstorey: Second floor\n"
      "trajectory: {rooms: [\"2.07\", \"0.03 @ Basement\"]}\n",
      "trajectory.rooms[1]: '0.03 @ Basement': unknown storey \"Basement\" (storeys: 0"),
+    ("building: bim/office.ifc\ntrajectory: {rooms: [Corridor]}\nscene:\n  people:\n"
+     "    - {type: person, waypoints: [[2.6, 9.5], [5.0, 2.5]]}\n",
+     "bad.yaml:5: scene.people[0].waypoints: the walk from (2.60, 9.50) to (5.00, 2.50) is "
+     "blocked at"),
 ])
 def test_bad_input_fails_cleanly(tmp_path, yaml_text, field):
     scenario = tmp_path / "bad.yaml"
