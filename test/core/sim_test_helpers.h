@@ -3,8 +3,11 @@
 // Small synthetic worlds for the sim tests (no files, no converter).
 
 #include <Eigen/Core>
+#include <sstream>
+#include <string>
 
 #include "is_graphs/agraph/agraph.h"
+#include "is_graphs/geometry/triangle_mesh.h"
 #include "is_graphs/sim/scan_simulator.h"
 #include "is_graphs/sim/scene.h"
 
@@ -24,6 +27,16 @@ inline bool SameScan(const LidarScan& a, const LidarScan& b) {
   for (std::size_t i = 0; i < a.points.size(); ++i)
     if (!SamePoint(a.points[i], b.points[i])) return false;
   return true;
+}
+
+/// The scene BuildScene makes of an inline OBJ (one storey, no rooms, seed 1) under `config`.
+inline Result<SceneMesh> SceneOfObj(const std::string& obj_text, const SceneConfig& config) {
+  std::istringstream obj(obj_text);
+  const auto mesh = geometry::ParseObj(obj, "inline.obj");
+  if (!mesh.ok()) return Result<SceneMesh>::Error(mesh.error());
+  agraph::AGraph graph;
+  graph.storeys.push_back({});
+  return BuildScene(mesh.value(), graph, 0, 0.0, config, 1);
 }
 
 /// A closed box room [0, sx] x [0, sy] x [0, sz]: floor, ceiling and four walls (0.2 m thick,

@@ -119,22 +119,18 @@ TEST(SimGlass, SameSeedSameScan) {
 }
 
 TEST(SimGlass, TheSceneMarksTheGlassClassesTriangles) {
-  std::istringstream obj(
+  const std::string obj =
       "o IfcWall#1\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n"
       "o IfcWindow#2\nv 0 1 0\nv 1 1 0\nv 0 1 1\nf 4 5 6\n"
-      "o IfcWindowStandardCase#3\nv 0 2 0\nv 1 2 0\nv 0 2 1\nf 7 8 9\n");
-  const auto mesh = geometry::ParseObj(obj, "inline.obj");
-  ASSERT_TRUE(mesh.ok()) << mesh.error();
-  agraph::AGraph graph;
-  graph.storeys.push_back({});
+      "o IfcWindowStandardCase#3\nv 0 2 0\nv 1 2 0\nv 0 2 1\nf 7 8 9\n";
   SceneConfig config;
-  auto scene = BuildScene(mesh.value(), graph, 0, 0.0, config, 1);
+  auto scene = testing::SceneOfObj(obj, config);
   ASSERT_TRUE(scene.ok()) << scene.error();
   EXPECT_TRUE(scene.value().glass.empty()) << "glass off: no flags";
   config.glass.enabled = true;
   config.clutter.push_back({});
   config.clutter.back().position = Eigen::Vector2d(3.0, 3.0);
-  scene = BuildScene(mesh.value(), graph, 0, 0.0, config, 1);
+  scene = testing::SceneOfObj(obj, config);
   ASSERT_TRUE(scene.ok()) << scene.error();
   const auto& glass = scene.value().glass;
   ASSERT_EQ(glass.size(), scene.value().size());
@@ -143,7 +139,7 @@ TEST(SimGlass, TheSceneMarksTheGlassClassesTriangles) {
   EXPECT_EQ(glass[2], 1);
   for (std::size_t t = 3; t < glass.size(); ++t) EXPECT_EQ(glass[t], 0) << "clutter";
   config.glass.classes = {"IfcCurtainWall"};
-  scene = BuildScene(mesh.value(), graph, 0, 0.0, config, 1);
+  scene = testing::SceneOfObj(obj, config);
   ASSERT_FALSE(scene.ok());
   EXPECT_NE(scene.error().find("scene.glass.classes: no object of IfcCurtainWall"),
             std::string::npos)

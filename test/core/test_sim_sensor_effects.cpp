@@ -214,22 +214,18 @@ TEST(SimSensorEffects, GhostsBelowAPolishedFloorOnlyWhenOn) {
 }
 
 TEST(SimSensorEffects, PolishedFloorMarksSlabsNotTheSiteNorClutter) {
-  std::istringstream obj(
+  const std::string obj =
       "o IfcSlab#1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
       "o IfcSite#2\nv 0 0 -1\nv 1 0 -1\nv 0 1 -1\nf 4 5 6\n"
-      "o IfcWall#3\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 7 8 9\n");
-  const auto mesh = geometry::ParseObj(obj, "inline.obj");
-  ASSERT_TRUE(mesh.ok()) << mesh.error();
-  agraph::AGraph graph;
-  graph.storeys.push_back({});
+      "o IfcWall#3\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 7 8 9\n";
   SceneConfig config;
-  auto scene = BuildScene(mesh.value(), graph, 0, 0.0, config, 1);
+  auto scene = testing::SceneOfObj(obj, config);
   ASSERT_TRUE(scene.ok()) << scene.error();
   EXPECT_TRUE(scene.value().polished.empty()) << "off: no flags";
   config.polished_floor = true;
   config.clutter.push_back({});
   config.clutter.back().position = Eigen::Vector2d(3.0, 3.0);
-  scene = BuildScene(mesh.value(), graph, 0, 0.0, config, 1);
+  scene = testing::SceneOfObj(obj, config);
   ASSERT_TRUE(scene.ok()) << scene.error();
   const auto& polished = scene.value().polished;
   ASSERT_EQ(polished.size(), scene.value().size());
