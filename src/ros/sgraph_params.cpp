@@ -85,6 +85,10 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "association_min_sigma_angle_deg", f.association_min_sigma_angle_deg);
   Read(pnh, "association_max_gap", f.association_max_gap);
   Read(pnh, "association_coplanar_tolerance", f.association_coplanar_tolerance);
+  Read(pnh, "consistency_min_walls", f.consistency_min_walls);
+  Read(pnh, "consistency_min_keyframes", f.consistency_min_keyframes);
+  Read(pnh, "consistency_angle_deg", f.consistency_angle_deg);
+  Read(pnh, "consistency_angle_deg_per_m", f.consistency_angle_deg_per_m);
   Read(pnh, "detect_rooms", f.detect_rooms);
   Read(pnh, "detect_track_loss", f.detect_track_loss);
   Read(pnh, "track_loss_min_keyframes", f.track_loss_min_keyframes);

@@ -84,6 +84,14 @@ struct FrontendConfig {
   // Two segments of one scan on one mapped plane must be this coplanar, else one is moved off
   // (a window set back in its wall, the two faces of a step).
   double association_coplanar_tolerance{0.05};
+  // A keyframe's wall associated with a mapped plane but turned off the heading error its other
+  // associated walls agree on is not used (scan_consistency.h): a door leaf swung a few degrees
+  // off its wall. The tolerance grows with the path walked since the plane was last observed;
+  // only planes observed by consistency_min_keyframes keyframes take part; 0 walls: no check.
+  int consistency_min_walls{3};
+  int consistency_min_keyframes{3};
+  double consistency_angle_deg{1.5};
+  double consistency_angle_deg_per_m{0.5};
 
   // Rooms and corridors.
   bool detect_rooms{true};

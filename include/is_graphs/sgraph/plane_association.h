@@ -19,6 +19,8 @@ struct MapPlaneView {
   bool horizontal{false};
   Eigen::Vector3d start{Eigen::Vector3d::Zero()};  // extent along the wall
   Eigen::Vector3d end{Eigen::Vector3d::Zero()};
+  double walked_since{0.0};  // m of odometry path since a keyframe last observed it
+  int num_keyframes{0};      // keyframes that observed it
 };
 
 struct Association {

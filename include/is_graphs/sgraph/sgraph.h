@@ -21,7 +21,8 @@ struct Keyframe {
   int previous{-1};                                                // id, -1 for the first keyframe
   Eigen::Isometry3d relative_odom{Eigen::Isometry3d::Identity()};  // previous^-1 * this
   Eigen::Matrix<double, 6, 6> odom_information{Eigen::Matrix<double, 6, 6>::Identity()};
-  int level{0};  // the storey walked (levels.h): 0 until a stair climb reaches another
+  int level{0};      // the storey walked (levels.h): 0 until a stair climb reaches another
+  double path{0.0};  // m of odometry path walked from the first keyframe to this one
 };
 
 struct Plane {

@@ -43,6 +43,9 @@ class SGraphBuilder {
     int num_new_planes{0};
     int num_walls{0};      // of the planes seen, the vertical ones
     int num_new_walls{0};  // ... that matched no mapped plane
+    // Walls matched to a mapped plane that the keyframe's other walls contradict (a door leaf
+    // swung off its wall, a person before it): not used (scan_consistency.h).
+    int num_contradicted{0};
     // Track lost (most walls seen match nothing mapped: a kidnapped robot, an odometry jump):
     // the S-Graph was dropped and restarted from this keyframe (see FrontendConfig).
     bool restarted{false};
@@ -93,7 +96,9 @@ class SGraphBuilder {
     Eigen::Vector3d end{Eigen::Vector3d::Zero()};
     bool horizontal{false};
     Eigen::Matrix3d information{Eigen::Matrix3d::Zero()};  // fused, tangent at the normal
-    int merged_into{-1};  // >= 0: a duplicate of that plane, merged into it (the id stays unused)
+    int merged_into{-1};    // >= 0: a duplicate of that plane, merged into it (the id stays unused)
+    int last_keyframe{-1};  // the newest keyframe that observed it
+    int num_keyframes{0};   // keyframes that observed it
   };
 
   void ResetLocked();

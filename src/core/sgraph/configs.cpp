@@ -82,6 +82,10 @@ std::string FrontendConfig::Validate() const {
   c.Positive("association_min_sigma_angle_deg", association_min_sigma_angle_deg);
   c.NonNegative("association_max_gap", association_max_gap);
   c.Positive("association_coplanar_tolerance", association_coplanar_tolerance);
+  c.NonNegative("consistency_min_walls", consistency_min_walls);
+  c.NonNegative("consistency_min_keyframes", consistency_min_keyframes);
+  c.Positive("consistency_angle_deg", consistency_angle_deg);
+  c.NonNegative("consistency_angle_deg_per_m", consistency_angle_deg_per_m);
   c.Positive("room_max_range", room_max_range);
   c.Positive("room_min_width", room_min_width);
   c.Less("room_min_width", room_min_width, "room_max_width", room_max_width);

@@ -1,5 +1,6 @@
 #include "is_graphs/sgraph/sgraph_builder.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "is_graphs/sgraph/deskew.h"
 #include "is_graphs/sgraph/plane_association.h"
 #include "is_graphs/sgraph/plane_fit.h"
+#include "is_graphs/sgraph/scan_consistency.h"
 
 namespace is_graphs {
 namespace sgraph {
@@ -222,6 +224,7 @@ void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& 
     Eigen::Isometry3d step = kf.relative_odom;
     step.translation() *= odometry_scale_;
     kf.pose = prev.pose * step;
+    kf.path = prev.path + kf.relative_odom.translation().norm();
   }
   kf.level = levels_.Add(Eigen::Vector3d(kf.pose.translation()));
   keyframes_.push_back(kf);
@@ -244,8 +247,14 @@ void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSe
   // Two coplanar segments of one scan may land on one mapped plane (a wall behind an
   // obstacle), two parallel ones apart may not.
   const std::vector<Association> associations = AssociateScan(in_map_segments, views, frontend_);
+  const std::vector<int> contradicted =
+      ContradictedWalls(in_map_segments, views, associations, frontend_).contradicted;
   std::vector<int> touched;  // planes observed now: they may have grown into a duplicate
   for (size_t s = 0; s < segments.size(); ++s) {
+    if (std::binary_search(contradicted.begin(), contradicted.end(), static_cast<int>(s))) {
+      ++result.num_contradicted;  // turned since it was mapped (a door leaf): not used
+      continue;
+    }
     const PlaneSegment& segment = segments[s];
     const PlaneSegment& in_map = in_map_segments[s];
     ++result.num_segments;
@@ -275,6 +284,8 @@ void SGraphBuilder::AddPlaneObservations(int keyframe, const std::vector<PlaneSe
       if (!segment.horizontal) ++result.num_new_walls;
     }
     if (!segment.horizontal) ++result.num_walls;
+    if (planes_[plane_id].last_keyframe != keyframe) ++planes_[plane_id].num_keyframes;
+    planes_[plane_id].last_keyframe = keyframe;
     PlaneObservation o;
     o.keyframe = keyframe;
     o.plane = plane_id;

@@ -60,6 +60,8 @@ void SGraphBuilder::MergePlane(int from, int into) {
   const PlaneSegment piece = AsSegment(gone);
   ExtendPlane(planes_[into], piece);
   gone.merged_into = into;
+  planes_[into].last_keyframe = std::max(planes_[into].last_keyframe, gone.last_keyframe);
+  planes_[into].num_keyframes += gone.num_keyframes;
   for (auto& o : observations_)
     if (o.plane == from) o.plane = into;
   for (auto& room : rooms_) {

@@ -32,6 +32,9 @@ std::vector<MapPlaneView> SGraphBuilder::MapViewsLocked() const {
     v.horizontal = p.horizontal;
     v.start = p.start;
     v.end = p.end;
+    v.num_keyframes = p.num_keyframes;
+    if (p.last_keyframe >= 0 && !keyframes_.empty())
+      v.walked_since = keyframes_.back().path - keyframes_[p.last_keyframe].path;
     views.push_back(v);
   }
   return views;
