@@ -9,6 +9,8 @@ by an IfcDoor (IfcRelFillsElement). Optionally 1st-level IfcRelSpaceBoundary rel
 A layout with several storeys gets one IfcBuildingStorey each, and per flight an IfcStair
 (contained in its lower storey) aggregating an IfcStairFlight whose Body is its stepped side
 profile extruded across its width; the slabs over a flight are voided by IfcOpeningElements.
+Split levels (building_levels): spaces start at their room's floor, walls at the lowest floor
+they bound, doors at the lower floor; slabs, steps and ramps are written by building_ifc_floors.
 
 The output is deterministic: GlobalIds are hashes of the building name and a stable key, the
 header and owner history carry fixed timestamps, and entities are created in layout order.

@@ -49,7 +49,8 @@ def _level_slabs(b, holes) -> list:
     for level in sorted({rm.floor for rm in lay.rooms}):
         polys = [pieces[rm.name] for rm in lay.rooms if rm.floor == level]
         mine = [h for h in holes if _level_of(lay, pieces, h[2]) == level]
-        key, name = ("slab:FLOOR", "Floor slab") if level == 0 else (f"slab:FLOOR@{level:g}", f"Floor slab {level:+g} m")
+        key, name = ("slab:FLOOR", "Floor slab") if level == 0 else \
+            (f"slab:FLOOR@{level:g}", f"Floor slab {level:+g} m")
         out.append(_slab(b, key, name, "FLOOR", level - lay.floor_thickness, polys, lay.floor_thickness, mine))
     return out
 

@@ -1,4 +1,5 @@
-"""Layout YAML -> validated building layout (one storey, or several with stairs; in plan).
+"""Layout YAML -> validated building layout (one storey, or several with stairs; split levels
+with steps and ramps inside a storey; in plan).
 
 The format is documented in ``bim/README.md``. All lengths in the YAML are metres, whatever
 unit the IFC file is written in. Everything a writer or a test needs is derived here once:
@@ -15,14 +16,14 @@ from pathlib import Path
 import yaml
 
 from . import building_geometry as geo
-from .building_model import Boundary, Door, Layout, Room, Stair, Wall
+from .building_model import Boundary, Door, Layout, Ramp, Room, Stair, Wall
 from .building_parse import LayoutError, Reader
 from .building_rooms import _r, read_rooms
 from .building_levels import apply_levels, check_levels, door_links
 from .building_steps import read_steps_and_ramps
 from .building_storeys import parse_storeys
 
-__all__ = ["Layout", "Wall", "Room", "Door", "Boundary", "Stair", "LayoutError", "load_layout", "parse_layout"]
+__all__ = ["Layout", "Wall", "Room", "Door", "Boundary", "Stair", "Ramp", "LayoutError", "load_layout", "parse_layout"]
 
 Point = geo.Point
 

@@ -133,7 +133,8 @@ def test_steps_risers_and_ramp_slope_as_laid_out():
     slopes = {round(math.degrees(math.acos(min(1.0, nz))), 4) for nz in n[:, 2] if 0.5 < nz < 0.9999}
     assert slopes == {round(math.degrees(math.atan(0.45 / 3.5)), 4)}
     assert (v[:, 2].min(), v[:, 2].max()) == pytest.approx((-0.45, 0.0))
-    assert ifcopenshell.util.element.get_pset(rf, "Pset_RampFlightCommon")["Slope"] == pytest.approx(math.atan(0.45 / 3.5))
+    slope = ifcopenshell.util.element.get_pset(rf, "Pset_RampFlightCommon")["Slope"]
+    assert slope == pytest.approx(math.atan(0.45 / 3.5))   # radians, the file's angle unit
     for e in (stair, ramp):
         assert ifcopenshell.util.element.get_container(e).is_a("IfcBuildingStorey")
 
@@ -189,3 +190,12 @@ def test_split_output_is_deterministic(tmp_path):
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert out.read_bytes() == (ROOT / "bim" / "split.ifc").read_bytes()
+
+
+def test_ifc2x3_in_millimetres_writes_steps_and_ramp():
+    d = {**split_data(), "schema": "IFC2X3", "units": "mm"}
+    f = build_ifc(parse_layout(d, "s.yaml"))
+    (ramp,), (rf,), (fl,) = f.by_type("IfcRamp"), f.by_type("IfcRampFlight"), f.by_type("IfcStairFlight")
+    assert ramp.ShapeType == "STRAIGHT_RUN_RAMP" and (fl.NumberOfRiser, fl.RiserHeight) == (3, 150.0)
+    v = shapes(f, [rf])[rf.id()][0]
+    assert (v[:, 2].min(), v[:, 2].max()) == pytest.approx((-0.45, 0.0))   # world coordinates in metres
