@@ -70,13 +70,21 @@ def door_links(lay: Layout, d) -> bool:
 
 def slab_polygon(lay: Layout, room: Room) -> list:
     """The floor slab piece under a room: its corner polygon (on the wall axes), pushed out to the
-    outer face of exterior walls, so that the pieces of neighbouring rooms meet on the axes."""
+    outer face of exterior walls; under a wall between two levels the lower room's piece reaches
+    the far face and the higher room's stops at its own face (so nothing of the higher floor is
+    left in a doorway on the lower one); between rooms of one level the pieces meet on the axis."""
     n = len(room.corners)
     halves = []
     for k in range(n):
         cov = _covering(lay, room.corners[k], room.corners[(k + 1) % n])
         w = cov[0][0]
-        halves.append(-0.5 * w.thickness if w.external else 0.0)
+        others = [rm.floor for rm in lay.rooms if rm is not room and any(bd.wall == w.id for bd in rm.boundaries)]
+        if w.external or any(f > room.floor for f in others):
+            halves.append(-0.5 * w.thickness)
+        elif any(f < room.floor for f in others):
+            halves.append(0.5 * w.thickness)
+        else:
+            halves.append(0.0)
     try:
         return [_r(p) for p in geo.inner_polygon(room.corners, halves)]
     except ValueError:  # an exterior edge collinear with an interior one: stop at the axes

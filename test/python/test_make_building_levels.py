@@ -82,6 +82,10 @@ def test_floor_slab_at_each_level_spaces_at_their_floors():
         level = -0.45 if "-0.45" in s.Name else 0.0
         v = got[s.id()][0]
         assert v[:, 2].max() == pytest.approx(level) and v[:, 2].min() == pytest.approx(level - 0.25)
+        # the pieces meet at the split walls' west face (x 10.9): the lower floor runs under the
+        # walls between the levels and through their doorways, the higher one stops at its face
+        assert (v[:, 0].max() if level == 0 else v[:, 0].min()) == pytest.approx(10.9)
+        assert v[:, 1].min() == pytest.approx(-0.15) and v[:, 1].max() == pytest.approx(14.15)
         assert ifcopenshell.util.element.get_container(s).is_a("IfcBuildingStorey")
         # one body item per room on that level; the higher slab is cut over the steps and the ramp
         assert len(s.Representation.Representations[0].Items) == sum(r.floor == level for r in lay.rooms)
