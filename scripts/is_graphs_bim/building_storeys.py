@@ -95,6 +95,10 @@ def _read_stairs(r: Reader, lay: Layout) -> None:
         st = Stair(sid, lower, start, geo.unit(dv), width, risers, h, tread)
         if room_holding(lo_st, st.footprint) is None:
             raise r.error(f"{f}.start", f"flight '{sid}' is not inside one room of storey '{lo_st.storey_name}'")
+        for s_, x in [(lo_st, x) for x in lo_st.steps + lo_st.ramps] + [(up_st, x) for x in up_st.steps + up_st.ramps]:
+            if geo.convex_overlap(x.footprint, st.footprint):
+                raise r.error(f"{f}.start", f"flight '{sid}' overlaps '{x.id}' (steps or ramp) of storey "
+                              f"'{s_.storey_name}'")
         for oid, hole in lo_st.floor_openings:
             if geo.convex_overlap(hole, st.footprint):
                 raise r.error(f"{f}.start", f"flight '{sid}' stands over the floor opening for flight '{oid}'")

@@ -127,3 +127,28 @@ def test_one_level_layouts_take_floor_zero_and_doors_with_leaves():
         dr["leaf"] = True
     from is_graphs_bim.building_ifc import build_ifc
     assert build_ifc(parse_layout(d, "o.yaml")).to_string() == build_ifc(plain).to_string()
+
+
+def _two_storeys_with_steps(flight_start):
+    """split_two_rooms twice, 3.5 m apart, a flight between them starting at ``flight_start``."""
+    d = yaml.safe_load((ROOT / "test" / "data" / "layouts" / "split_two_rooms.yaml").read_text())
+    plan = {k: d.pop(k) for k in ("floor_slab", "ceiling_slab", "walls", "rooms", "doors", "steps")}
+    d.pop("space_boundaries")
+    d["storeys"] = [{"name": "G", "elevation": 0.0, **copy.deepcopy(plan)},
+                    {"name": "F1", "elevation": 3.5, **copy.deepcopy(plan)}]
+    d["stairs"] = [{"id": "steps", "storey": 0, "start": flight_start, "direction": [1, 0], "width": 0.8,
+                    "risers": 20, "riser_height": 0.175, "tread": 0.18}]
+    return d
+
+
+def test_steps_on_the_storeys_of_a_multi_storey_layout():
+    from is_graphs_bim.building_ifc import build_ifc
+    f = build_ifc(parse_layout(_two_storeys_with_steps([0.8, 0.6]), "m.yaml"))
+    ids = [e.GlobalId for e in f.by_type("IfcRoot")]
+    assert len(ids) == len(set(ids))   # a flight between storeys may share its id with steps
+    assert len(f.by_type("IfcStair")) == 3
+    holes = [[o.RelatedOpeningElement.Name for o in s.HasOpenings] for s in f.by_type("IfcSlab")]
+    assert holes == [[], ["steps opening"], [], ["steps stairwell", "steps opening"]]
+    with pytest.raises(LayoutError, match=r"stairs\[0\]\.start: flight 'steps' overlaps 'steps' \(steps or ramp\) "
+                       r"of storey 'G'"):
+        parse_layout(_two_storeys_with_steps([1.2, 2.0]), "m.yaml")
