@@ -65,7 +65,7 @@ def door_links(lay: Layout, d) -> bool:
     a, b = (next(rm for rm in lay.rooms if rm.name == n) for n in d.rooms)
     if abs(a.floor - b.floor) <= THRESHOLD_STEP + 1e-9:
         return True
-    return any(getattr(x, "door", None) == d.id for x in list(lay.steps) + list(lay.ramps))
+    return any(x.door == d.id for x in lay.steps + lay.ramps)
 
 
 def slab_polygon(lay: Layout, room: Room) -> list:
