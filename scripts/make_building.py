@@ -2,6 +2,8 @@
 """Writes IFC files of procedural buildings from plan layouts (YAML; format in bim/README.md).
 
 A layout is one storey, or several (`storeys:`) joined by straight stair flights (`stairs:`).
+Rooms of a storey may stand at floor levels of their own (`floor:`), joined by steps (`steps:`)
+and ramps (`ramps:`) in doors or doorless openings between them.
 
   make_building.py LAYOUT.yaml -o OUT.ifc     one layout
   make_building.py --all                      bim/layouts/*.yaml -> bim/<stem>.ifc

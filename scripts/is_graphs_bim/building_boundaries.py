@@ -47,15 +47,19 @@ def add_space_boundaries(b, spaces: dict, walls: dict, doors: dict) -> None:
         rel.InternalOrExternalBoundary = "EXTERNAL" if external else "INTERNAL"
 
     for room in lay.rooms:
+        top = height - room.floor   # space coordinates: z = 0 at the room's floor
         for k, bd in enumerate(room.boundaries):
             wall = lay.wall(bd.wall)
             d = geo.unit(geo.sub(bd.end, bd.start))
             length = geo.norm(geo.sub(bd.end, bd.start))
             in_here = [(door, iv) for door in lay.doors
                        if (iv := _door_interval(lay, door, bd, length)) is not None]
-            inner = [rect(t0, t1, 0.0, door.height) for door, (t0, t1) in in_here]
+            # a door's sill is on the lower floor of its rooms: below the higher room's floor
+            def hole(door, t0, t1):
+                return rect(t0, t1, max(0.0, door.sill - room.floor), door.sill + door.height - room.floor)
+            inner = [hole(door, t0, t1) for door, (t0, t1) in in_here]
             relation(f"boundary:{room.name}:{k}", room, walls[bd.wall], wall.external, bd.start, d,
-                     rect(0.0, length, 0.0, height), inner)
+                     rect(0.0, length, 0.0, top), inner)
             for door, (t0, t1) in in_here:
                 relation(f"boundary:{room.name}:{k}:{door.id}", room, doors[door.id], wall.external,
-                         bd.start, d, rect(t0, t1, 0.0, door.height), [])
+                         bd.start, d, hole(door, t0, t1), [])

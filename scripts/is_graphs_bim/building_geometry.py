@@ -258,3 +258,14 @@ def inner_polygon(corners: list[Point], half_thickness: list[float]) -> list[Poi
             continue
         out.append(x)
     return drop_collinear(out)
+
+
+def convex_overlap(a, b) -> bool:
+    """Whether two convex polygons overlap with positive area (separating axis test)."""
+    for poly in (a, b):
+        for k in range(len(poly)):
+            n = left(unit(sub(poly[(k + 1) % len(poly)], poly[k])))
+            pa, pb = [dot(p, n) for p in a], [dot(p, n) for p in b]
+            if max(pa) <= min(pb) + 1e-9 or max(pb) <= min(pa) + 1e-9:
+                return False
+    return True

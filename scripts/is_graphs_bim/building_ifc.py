@@ -9,6 +9,8 @@ by an IfcDoor (IfcRelFillsElement). Optionally 1st-level IfcRelSpaceBoundary rel
 A layout with several storeys gets one IfcBuildingStorey each, and per flight an IfcStair
 (contained in its lower storey) aggregating an IfcStairFlight whose Body is its stepped side
 profile extruded across its width; the slabs over a flight are voided by IfcOpeningElements.
+Split levels (building_levels): spaces start at their room's floor, walls at the lowest floor
+they bound, doors at the lower floor; slabs, steps and ramps are written by building_ifc_floors.
 
 The output is deterministic: GlobalIds are hashes of the building name and a stable key, the
 header and owner history carry fixed timestamps, and entities are created in layout order.
@@ -34,6 +36,7 @@ import ifcopenshell.api.unit
 import ifcopenshell.guid
 
 from . import building_geometry as geo
+from . import building_ifc_floors as floors
 from .building_boundaries import add_space_boundaries
 from .building_layout import Layout
 
@@ -143,9 +146,12 @@ class IfcBuilder:
         lay, f, storey = self.lay, self.f, self.storey
         walls = {w.id: self._wall(w) for w in lay.walls}
         doors = {d.id: self._door(d, walls[d.wall]) for d in lay.doors}
-        slabs = self._slabs()
+        slabs = floors.slabs(self)
         spaces = {rm.name: self._space(rm) for rm in lay.rooms}
-        contained = list(walls.values()) + list(doors.values()) + slabs + list(extra)
+        extra = list(extra) + [floors.flight(self, s, "steps") for s in lay.steps]
+        extra += [floors.ramp(self, rp) for rp in lay.ramps]
+        leaves = [doors[d.id] for d in lay.doors if d.leaf]  # doorless openings are no contained element
+        contained = list(walls.values()) + leaves + slabs + extra
         # the api collects related products in sets: put them back in layout order (determinism)
         rel = ifcopenshell.api.spatial.assign_container(f, products=contained, relating_structure=storey)
         rel.RelatedElements = contained
@@ -173,42 +179,9 @@ class IfcBuilder:
         rel.RelatedObjects = storeys
         for i, st in enumerate(top.storeys):
             self.lay, self.storey, self.key_prefix = st, storeys[i], f"storey:{i}/"
-            stairs = [self._stair(s) for s in top.stairs if s.lower == i]
+            stairs = [floors.flight(self, s) for s in top.stairs if s.lower == i]
             self._storey_contents(stairs)
         self.lay, self.key_prefix = top, ""
-
-    def _stair(self, s):
-        """IfcStair > IfcStairFlight: the flight's side profile (risers and treads, a 0.25 m
-        waist under them) in its vertical plane, extruded across its width."""
-        f = self.f
-        ifc2x3 = f.schema == "IFC2X3"
-        stair = self.rooted("IfcStair", f"stair:{s.id}", s.id, None if ifc2x3 else "STRAIGHT_RUN_STAIR")
-        if ifc2x3:
-            stair.ShapeType = "STRAIGHT_RUN_STAIR"
-        flight = self.rooted("IfcStairFlight", f"flight:{s.id}", f"{s.id} flight", None if ifc2x3 else "STRAIGHT")
-        if ifc2x3:
-            flight.NumberOfRiser, flight.NumberOfTreads = s.risers, s.risers - 1
-            flight.RiserHeight, flight.TreadLength = self.L(s.riser_height), self.L(s.tread)
-        else:
-            flight.NumberOfRisers, flight.NumberOfTreads = s.risers, s.risers - 1
-            flight.RiserHeight, flight.TreadLength = self.L(s.riser_height), self.L(s.tread)
-        self.place(stair, self.storey, (*s.start, 0.0), s.direction)
-        self.place(flight, stair)
-        n, h, t = s.risers, s.riser_height, s.tread
-        prof = [(0.0, 0.0)]
-        for k in range(1, n):
-            prof += [((k - 1) * t, k * h), (k * t, k * h)]
-        waist = 0.25
-        prof += [((n - 1) * t, (n - 1) * h - waist), (t, 0.0)]
-        profile = f.createIfcArbitraryClosedProfileDef("AREA", None, self.polyline(prof, True))
-        # profile plane: x along the flight, y up; extruded along -y of the flight (its width)
-        pos = f.createIfcAxis2Placement3D(self.pt(0.0, 0.5 * s.width, 0.0), self.direction(0.0, -1.0, 0.0),
-                                          self.direction(1.0, 0.0, 0.0))
-        solid = f.createIfcExtrudedAreaSolid(profile, pos, self.direction(0.0, 0.0, 1.0), self.L(s.width))
-        self.shape(flight, [solid])
-        rel = ifcopenshell.api.aggregate.assign_object(f, products=[flight], relating_object=stair)
-        rel.RelatedObjects = [flight]
-        return stair
 
     def _units(self) -> None:
         f = self.f
@@ -224,9 +197,9 @@ class IfcBuilder:
         d = ax.direction
         wall = self.rooted("IfcWall", f"wall:{w.id}", w.id, None if self.f.schema == "IFC2X3"
                            else ("SOLIDWALL" if w.external else "PARTITIONING"))
-        self.place(wall, self.storey, (*w.start, 0.0), d)
+        self.place(wall, self.storey, (*w.start, w.bottom), d)   # standing on the lowest floor it bounds
         local = [(ax.param(p), ax.offset(p)) for p in w.footprint]
-        self.shape(wall, [self.extrusion(local, w.height)], axis_pts=[(0.0, 0.0), (ax.length, 0.0)])
+        self.shape(wall, [self.extrusion(local, w.height - w.bottom)], axis_pts=[(0.0, 0.0), (ax.length, 0.0)])
         pset = ifcopenshell.api.pset.add_pset(self.f, product=wall, name="Pset_WallCommon")
         ifcopenshell.api.pset.edit_pset(self.f, pset=pset, properties={"IsExternal": w.external})
         return wall
@@ -234,12 +207,14 @@ class IfcBuilder:
     def _door(self, d, wall):
         w = self.lay.wall(d.wall)
         half = 0.5 * w.thickness + OPENING_OVERSHOOT
-        opening = self.rooted("IfcOpeningElement", f"opening:{d.id}", f"{d.id} opening",
+        opening = self.rooted("IfcOpeningElement", f"opening:{d.id}", f"{d.id} opening" if d.leaf else d.id,
                               None if self.f.schema == "IFC2X3" else "OPENING")
         ifcopenshell.api.feature.add_feature(self.f, feature=opening, element=wall)
-        self.place(opening, wall, (d.at - 0.5 * d.width, 0.0, 0.0))
+        self.place(opening, wall, (d.at - 0.5 * d.width, 0.0, d.sill - w.bottom))  # sill: the lower floor
         box = [(0.0, -half), (d.width, -half), (d.width, half), (0.0, half)]
         self.shape(opening, [self.extrusion(box, d.height)])
+        if not d.leaf:  # a doorless opening: named as the layout's door, no IfcDoor
+            return opening
         door = self.rooted("IfcDoor", f"door:{d.id}", d.id, None if self.f.schema == "IFC2X3" else "DOOR")
         door.OverallWidth, door.OverallHeight = self.L(d.width), self.L(d.height)
         if hasattr(door, "OperationType"):
@@ -257,35 +232,9 @@ class IfcBuilder:
         space.CompositionType = "ELEMENT"
         if self.f.schema == "IFC2X3":
             space.InteriorOrExteriorSpace = "INTERNAL"
-        self.place(space, self.storey)
-        self.shape(space, [self.extrusion(rm.polygon, self.lay.height)])
+        self.place(space, self.storey, (0.0, 0.0, rm.floor))   # its bottom at the room's floor
+        self.shape(space, [self.extrusion(rm.polygon, self.lay.height - rm.floor)])
         return space
-
-    def _slabs(self) -> list:
-        lay, out = self.lay, []
-        outline = lay.slab_outline
-        if outline is None:
-            pts = [p for w in lay.walls if w.length > 1e-6 for p in w.footprint]
-            xs, ys = [p[0] for p in pts], [p[1] for p in pts]
-            outline = [(min(xs), min(ys)), (max(xs), min(ys)), (max(xs), max(ys)), (min(xs), max(ys))]
-        elif geo.signed_area(outline) < 0:
-            outline = outline[::-1]
-        for kind, thick, z0 in (("FLOOR", lay.floor_thickness, -lay.floor_thickness),
-                                ("ROOF", lay.ceiling_thickness, lay.height)):
-            if thick > 0:
-                slab = self.rooted("IfcSlab", f"slab:{kind}", "Floor slab" if kind == "FLOOR" else "Ceiling slab",
-                                   kind)
-                self.place(slab, self.storey, (0.0, 0.0, z0))
-                self.shape(slab, [self.extrusion(outline, thick)])
-                for sid, hole in (lay.floor_openings if kind == "FLOOR" else lay.ceiling_openings):
-                    op = self.rooted("IfcOpeningElement", f"slab_opening:{kind}:{sid}", f"{sid} stairwell",
-                                     None if self.f.schema == "IFC2X3" else "OPENING")
-                    ifcopenshell.api.feature.add_feature(self.f, feature=op, element=slab)
-                    self.place(op, slab)
-                    self.shape(op, [self.extrusion(hole if geo.signed_area(hole) > 0 else hole[::-1],
-                                                   thick + 2 * OPENING_OVERSHOOT, -OPENING_OVERSHOOT)])
-                out.append(slab)
-        return out
 
     def _finish(self) -> None:
         """Stable GlobalIds, one fixed owner history (IFC2X3) and a fixed header."""

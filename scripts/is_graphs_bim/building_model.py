@@ -20,6 +20,7 @@ class Wall:
     height: float
     external: bool
     footprint: list[Point] = field(default_factory=list)  # ccw, plan frame
+    bottom: float = 0.0   # its foot relative to the storey: the lowest floor it bounds, or 0
 
     @property
     def axis(self) -> geo.Axis:
@@ -45,6 +46,7 @@ class Room:
     corners: list[Point]                 # ccw, on the wall axes
     polygon: list[Point] = field(default_factory=list)   # ccw, inner faces
     boundaries: list[Boundary] = field(default_factory=list)
+    floor: float = 0.0                   # its floor level relative to the storey's elevation
 
     @property
     def area(self) -> float:
@@ -59,6 +61,15 @@ class Door:
     width: float
     height: float
     rooms: list[str] = field(default_factory=list)   # room names the door opens into (1 or 2)
+    leaf: bool = True      # False: a doorless opening (an IfcOpeningElement, no IfcDoor)
+    sill: float = 0.0      # relative to the storey: the lower floor of its rooms
+
+
+def run_rect(start: Point, d: Point, width: float, u0: float, u1: float) -> list[Point]:
+    """The plan rectangle ``width`` wide between u0 and u1 m from ``start`` along ``d``, ccw."""
+    n, half = geo.left(d), 0.5 * width
+    return [geo.add(geo.add(start, d, u0), n, -half), geo.add(geo.add(start, d, u1), n, -half),
+            geo.add(geo.add(start, d, u1), n, half), geo.add(geo.add(start, d, u0), n, half)]
 
 
 @dataclass
@@ -79,6 +90,9 @@ class Stair:
     riser_height: float
     tread: float
     headroom_margin: float = 0.0  # m: how far the slab openings reach beyond the flight's run
+    base: float = 0.0             # steps inside a storey: the lower floor relative to the storey
+    solid: bool = False           # steps inside a storey: solid down to ``base`` (no waist)
+    door: str = ""                # steps inside a storey: the door or opening they start in
 
     @property
     def run(self) -> float:
@@ -90,14 +104,39 @@ class Stair:
 
     def rect(self, u0: float, u1: float, extra_width: float = 0.0) -> list[Point]:
         """The plan rectangle between u0 and u1 m along the flight, ccw."""
-        d, n = self.direction, geo.left(self.direction)
-        half = 0.5 * self.width + extra_width
-        return [geo.add(geo.add(self.start, d, u0), n, -half), geo.add(geo.add(self.start, d, u1), n, -half),
-                geo.add(geo.add(self.start, d, u1), n, half), geo.add(geo.add(self.start, d, u0), n, half)]
+        return run_rect(self.start, self.direction, self.width + 2 * extra_width, u0, u1)
 
     @property
     def footprint(self) -> list[Point]:
         return self.rect(0.0, self.run)
+
+
+@dataclass
+class Ramp:
+    """A straight ramp inside one storey, from a doorway up into a higher room.
+
+    ``start`` is the middle of its foot (on the lower floor, ``base`` relative to the storey);
+    it climbs along ``direction`` (a unit vector) by ``rise`` over the horizontal ``length``.
+    """
+    id: str
+    start: Point
+    direction: Point
+    width: float
+    length: float
+    rise: float
+    base: float = 0.0
+    door: str = ""     # the door or opening it starts in
+
+    @property
+    def slope_deg(self) -> float:
+        return math.degrees(math.atan2(self.rise, self.length))
+
+    def rect(self, u0: float, u1: float) -> list[Point]:
+        return run_rect(self.start, self.direction, self.width, u0, u1)
+
+    @property
+    def footprint(self) -> list[Point]:
+        return self.rect(0.0, self.length)
 
 
 @dataclass
@@ -125,9 +164,19 @@ class Layout:
     # slab openings (plan polygons) over flights: set on each storey's Layout
     floor_openings: list[tuple[str, list[Point]]] = field(default_factory=list)
     ceiling_openings: list[tuple[str, list[Point]]] = field(default_factory=list)
+    # split levels inside a storey: steps and ramps between its rooms' floor levels, and the
+    # openings they cut in the floor slab of the higher level, as (GlobalId key, name, polygon)
+    steps: list[Stair] = field(default_factory=list)
+    ramps: list[Ramp] = field(default_factory=list)
+    level_openings: list[tuple[str, str, list[Point]]] = field(default_factory=list)
 
     def wall(self, wid: str) -> Wall:
         return next(w for w in self.walls if w.id == wid)
+
+    @property
+    def has_levels(self) -> bool:
+        """Whether some room stands at a floor level of its own (split levels)."""
+        return any(rm.floor != 0.0 for rm in self.rooms)
 
     @property
     def height(self) -> float:

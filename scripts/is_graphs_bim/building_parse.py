@@ -4,11 +4,11 @@ from __future__ import annotations
 import math
 
 HEADER_KEYS = ("name", "schema", "units", "space_boundaries", "placement", "storey", "defaults",
-               "floor_slab", "ceiling_slab", "points", "walls", "rooms", "doors")
+               "floor_slab", "ceiling_slab", "points", "walls", "rooms", "doors", "steps", "ramps")
 # a multi-storey layout: these at the top, the plan of each storey under storeys[i]
 MULTI_KEYS = ("name", "schema", "units", "space_boundaries", "placement", "defaults", "points",
               "storeys", "stairs")
-STOREY_KEYS = ("name", "elevation", "floor_slab", "ceiling_slab", "walls", "rooms", "doors")
+STOREY_KEYS = ("name", "elevation", "floor_slab", "ceiling_slab", "walls", "rooms", "doors", "steps", "ramps")
 DEFAULTS = {"wall_height": 2.9, "wall_thickness": 0.15, "exterior_thickness": 0.3,
             "door_width": 0.9, "door_height": 2.1}
 SCHEMAS = ("IFC4", "IFC2X3")
@@ -111,8 +111,8 @@ class Reader:
 
     def done(self, d: dict, f: str, allowed=None) -> None:
         known = {"walls": ("id", "from", "to", "thickness", "height", "external"),
-                 "rooms": ("name", "long_name", "corners"),
-                 "doors": ("id", "wall", "at", "width", "height", "connects")}
+                 "rooms": ("name", "long_name", "corners", "floor"),
+                 "doors": ("id", "wall", "at", "width", "height", "connects", "leaf")}
         allowed = allowed or known[f.split("[")[0]]
         for k in d:
             if k not in allowed:

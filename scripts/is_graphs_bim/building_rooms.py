@@ -31,12 +31,13 @@ def read_rooms(r: Reader, lay: Layout) -> None:
             raise r.error(f"{f}.name", f"duplicate room name '{name}'")
         long_name = r.string(rm, "long_name", f, name)
         corners = [r.to_point(p, f"{f}.corners[{k}]") for k, p in enumerate(r.list(rm, "corners", f))]
+        floor = r.number(rm, "floor", f, 0.0)
         r.done(rm, f)
         if len(corners) < 3:
             raise r.error(f"{f}.corners", "a room needs at least 3 corners")
         if geo.signed_area(corners) < 0:
             corners.reverse()
-        room = Room(name, long_name, corners)
+        room = Room(name, long_name, corners, floor=floor)
         halves, covers = [], []
         for k in range(len(corners)):
             a, b = corners[k], corners[(k + 1) % len(corners)]
@@ -85,6 +86,19 @@ def _add_boundaries(room: Room, covers, halves) -> None:
             if hi - lo > 1e-6 and not any(bd.wall == w.id and geo.same(bd.start, geo.add(base, d, lo))
                                           for bd in room.boundaries):
                 room.boundaries.append(Boundary(w.id, geo.add(base, d, lo), geo.add(base, d, hi)))
+
+
+def room_holding(lay: Layout, poly) -> Room | None:
+    """The room whose inner-face polygon holds the whole of ``poly`` (a convex polygon)."""
+    c = (sum(p[0] for p in poly) / len(poly), sum(p[1] for p in poly) / len(poly))
+    inner = [geo.add(p, geo.sub(c, p), 1e-4) for p in poly]   # just inside its corners
+    for rm in lay.rooms:
+        if all(geo.point_in_polygon(p, rm.polygon) for p in inner) and not any(
+                geo.segments_cross(inner[k], inner[(k + 1) % len(inner)], rm.polygon[j],
+                                   rm.polygon[(j + 1) % len(rm.polygon)])
+                for k in range(len(inner)) for j in range(len(rm.polygon))):
+            return rm
+    return None
 
 
 def _r(p: Point) -> Point:
