@@ -85,3 +85,25 @@ def test_a_floor_far_from_the_storey_elevation_is_warned(run_converter, tmp_path
     assert len(w) == 1, g["warnings"]
     assert "room 'B'" in w[0] and "1.60 m" in w[0] and "z = -0.600 m" in w[0]
     assert not [w for w in g["warnings"] if w.startswith(f"IfcSpace #{ids['space_A']}: ")]
+
+
+@pytest.mark.parametrize("name, lower, joins", [
+    ("test/data/split_two_rooms.ifc", {"Lower"}, {"d_step": ["Lower", "Upper"]}),
+    ("bim/split.ifc", {"CorridorE", "Workshop", "Store", "WC", "Studio"},
+     {"d_steps": ["CorridorE", "CorridorW"], "d_ramp": ["Living", "Studio"]}),
+])
+def test_the_generated_split_level_buildings(run_converter, tmp_path, repo, name, lower, joins):
+    """make_building's split levels: the rooms 0.45 m down stand on their slab at -0.45 m, the
+    rest at the storey's level; the steps' door and the ramp's opening join the two floors."""
+    import os
+    path = os.path.join(repo, name)
+    if not os.path.isfile(path):
+        pytest.skip(f"{name} is not in this checkout (made by make_building's split levels)")
+    g, _ = convert_quiet(run_converter, path, tmp_path / "out")
+    for r in g["rooms"]:
+        want = -0.45 if r["name"] in lower else 0.0
+        assert (r["floor_z"], r["floor_source"]) == (pytest.approx(want, abs=1e-6), "slab"), r
+    by_name = {d["name"]: d for d in g["doorways"]}
+    for door, rooms in joins.items():
+        assert _rooms(g, by_name[door]) == rooms
+    assert not [w for w in g["warnings"] if "opens into one room only" in w]
