@@ -27,6 +27,7 @@ from shapely.geometry import Polygon
 
 from . import ifc_model
 from .floors import UP_NZ, _floor_elements, _plan_polygon
+from .mesh import in_mesh
 
 FLOOR_BAND = 0.5     # m: a floor element's top this far below or above the reference floors it
 LEVEL_TOL = 0.005    # m: upward faces this close in height are one level
@@ -99,7 +100,8 @@ def _mesh_ids(model, shapes, skip):
     for sid, sh in shapes.items():
         if sid in skip:
             continue
-        if not any(_is_a(model.file.by_id(sid), c) for c in NOT_FLOORS):
+        e = model.file.by_id(sid)
+        if in_mesh(e) and not any(_is_a(e, c) for c in NOT_FLOORS):
             out.append(sid)
     return sorted(out)
 

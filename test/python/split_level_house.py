@@ -8,7 +8,8 @@ partition (x 3.9..4.1) holds door D_AB (y 1.0..1.9, top at door_top) whose sill 
 ("upper": A's floor, "lower": B's floor, "base": the walls' bottom, or a z); a door D_out in A's
 south wall. wall_base: the walls' bottom (default B's floor; the storey's elevation in exports
 that stand walls on the level); opening_only: D_AB's opening without its door; slab_b=False drops
-B's slab, space_b_bottom moves B's space bottom (to test the floor sources).
+B's slab, space_b_bottom moves B's space bottom, proxy_b puts an IfcBuildingElementProxy plate
+(top at B's floor) under B (to test the floor sources).
 """
 import numpy as np
 
@@ -16,7 +17,8 @@ from conftest import _box, _placement
 
 
 def build_split_house(path, step=0.45, sill="upper", storey_elevation=-0.6, slab_b=True,
-                      space_b_bottom=None, opening_only=False, wall_base=None, door_top=2.1):
+                      space_b_bottom=None, opening_only=False, wall_base=None, door_top=2.1,
+                      proxy_b=False):
     """Writes the file; returns {name: step id}."""
     import ifcopenshell.api.aggregate
     import ifcopenshell.api.context
@@ -106,6 +108,9 @@ def build_split_house(path, step=0.45, sill="upper", storey_elevation=-0.6, slab
         ids["space_" + name] = sp.id()
     product("IfcSlab", "S_A", _box(f, body, 1.0, 4.0, 4.0, 0.2, 0.0, 0.0, -0.2),
             predefined="FLOOR")
+    if proxy_b:     # a floor plate that is not a slab: an IfcBuildingElementProxy under B
+        product("IfcBuildingElementProxy", "P_B", _box(f, body, 1.0, 3.7, 3.6, 0.1, 4.1, 0.2,
+                                                       low - 0.1))
     if slab_b:
         product("IfcSlab", "S_B", _box(f, body, 1.0, 4.0, 4.0, 0.2, 4.0, 0.0, low - 0.2),
                 predefined="FLOOR")

@@ -67,6 +67,12 @@ def test_without_a_slab_the_space_bottom_is_the_floor(run_converter, tmp_path):
     assert floors_by_name(g)["B"] == (pytest.approx(-0.45, abs=1e-6), "space")
 
 
+def test_without_slab_or_space_bottom_an_upward_face_of_the_mesh_is_the_floor(run_converter,
+                                                                             tmp_path):
+    g, _, _ = _convert(run_converter, tmp_path, slab_b=False, space_b_bottom=-3.0, proxy_b=True)
+    assert floors_by_name(g)["B"] == (pytest.approx(-0.45, abs=1e-6), "mesh")
+
+
 def test_no_floor_found_takes_the_storey_elevation_and_names_the_room(run_converter, tmp_path):
     g, err, ids = _convert(run_converter, tmp_path, slab_b=False, space_b_bottom=-3.0)
     assert floors_by_name(g)["B"] == (pytest.approx(-0.6, abs=1e-6), "storey")
