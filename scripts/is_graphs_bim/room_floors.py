@@ -146,7 +146,7 @@ def assign(model, shapes, rooms, storeys, diag):
         if found is None:
             diag.warn(f"room {name}: no floor found under it (no slab or floor covering, no "
                       f"usable space bottom, no upward face in the mesh): its floor is taken at "
-                      f"its storey {st_name}'s elevation (z = {elev:.3f} m)", r.entity)
+                      f"the elevation of its storey {st_name} (z = {elev:.3f} m)", r.entity)
             found = (float(elev), "storey")
         r.floor_z, r.floor_source = found
         if abs(r.floor_z - elev) > OFF_STOREY:

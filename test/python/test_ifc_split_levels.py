@@ -78,7 +78,7 @@ def test_no_floor_found_takes_the_storey_elevation_and_names_the_room(run_conver
     assert floors_by_name(g)["B"] == (pytest.approx(-0.6, abs=1e-6), "storey")
     tag = f"IfcSpace #{ids['space_B']}: room 'B': no floor found under it"
     w = [w for w in g["warnings"] if w.startswith(tag)]
-    assert len(w) == 1 and "storey 'EG''s elevation (z = -0.600 m)" in w[0], g["warnings"]
+    assert len(w) == 1 and "the elevation of its storey 'EG' (z = -0.600 m)" in w[0], g["warnings"]
     assert tag in err
 
 
