@@ -1,3 +1,3 @@
 """is_graphs BIM tools: IFC -> A-Graph conversion (see docs/agraph_format.md)."""
 
-CONVERTER_VERSION = "6"
+CONVERTER_VERSION = "7"

@@ -8,6 +8,7 @@ import os
 
 from . import CONVERTER_VERSION, mesh
 from .converter import orientation, surface_rooms
+from .room_floors import per_storey
 from .spaces import centroid
 
 
@@ -63,6 +64,7 @@ def build(result, mesh_name):
             "id": ri, "ifc_id": r.ifc_id, "guid": _guid(r.entity), "name": r.entity.Name or "",
             "long_name": getattr(r.entity, "LongName", None) or "", "storey": r.storey,
             "polygon": [_v(p) for p in r.polygon], "z_min": _r(r.z_min), "z_max": _r(r.z_max),
+            "floor_z": _r(r.floor_z), "floor_source": r.floor_source,
             "center": _v([c[0], c[1], 0.5 * (r.z_min + r.z_max)]), "area": _r(r.area),
             "surfaces": sids, "walls": sorted({surfaces[s]["wall"] for s in sids}),
             "doorways": sorted(r.doorways)})
@@ -88,6 +90,7 @@ KINDS = ("door", "opening", "virtual")
 def report(result, storeys, surfaces, walls, rooms, doorways):
     """Per storey: what was kept (counts) and what was dropped, by IFC class and reason."""
     out = []
+    floors = per_storey(result.rooms)
     for s in storeys:
         k = s["id"]
 
@@ -108,7 +111,9 @@ def report(result, storeys, surfaces, walls, rooms, doorways):
                      "rooms": count(rooms), "doorways": kinds,
                      "floors_from_spaces": result.made_floors.per_storey.get(k, 0)},
             "dropped": [{"ifc_class": cls, "reason": why, "count": n}
-                        for (cls, why), n in dropped]})
+                        for (cls, why), n in dropped],
+            "room_floors": [{"room": ri, "name": name, "floor_z": _r(z), "source": src}
+                            for ri, name, z, src in floors.get(k, [])]})
     return out
 
 
@@ -173,4 +178,25 @@ def summary_lines(graph):
                          "under them: their footprints added to the mesh as floors)")
         for d in rep["dropped"]:
             lines.append(f"    dropped: {d['count']} {d['ifc_class']}: {d['reason']}")
+        lines += _floor_lines(rep, s["elevation"])
     return lines
+
+
+def _floor_lines(rep, elevation):
+    """'room floors: 3 slab, 1 space', and the rooms whose floor is off the storey's elevation
+    by more than OFF_LINE (split levels, steps, a storey level at the raw slab)."""
+    floors = rep.get("room_floors") or []
+    if not floors:
+        return []
+    by_src = {}
+    for f in floors:
+        by_src[f["source"]] = by_src.get(f["source"], 0) + 1
+    out = ["    room floors: " + ", ".join(f"{n} {src}" for src, n in sorted(by_src.items()))]
+    off = [f for f in floors if abs(f["floor_z"] - elevation) > OFF_LINE]
+    if off:
+        out.append(f"    off the storey's elevation by more than {OFF_LINE} m: " + ", ".join(
+            f"'{f['name']}' {f['floor_z']:.3f} m ({f['floor_z'] - elevation:+.2f})" for f in off))
+    return out
+
+
+OFF_LINE = 0.1

@@ -3,7 +3,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .spaces import point_in_polygon
+
 PROBE_BEYOND = 0.3      # m past the wall face where the rooms are probed
+STEP_MAX = 0.6          # m: a doorway joins rooms whose floors differ by up to this (a step, a
+                        # ramp); more is a change of storey
+HEADROOM = 1.8          # m: a doorway reaches at least this far above a floor it opens onto
 
 
 @dataclass
@@ -37,9 +42,24 @@ def _horizontal_frame(points):
     return n, np.array([-n[1], n[0], 0.0])
 
 
-def _room_at(rooms, p, z, exclude=()):
-    """The smallest room containing point p (2D) at height z, or None."""
-    hits = [ri for ri, r in enumerate(rooms) if ri not in exclude and r.contains(p, z)]
+def _opens_onto(room, p, bottom, top):
+    """Whether a doorway reaching from z = bottom to top opens, at plan point p, onto the room:
+    p is in its footprint and either its z range holds the sill (the rule for rooms level with
+    the doorway) or its floor lies between STEP_MAX below the doorway's bottom and HEADROOM below
+    its top (a room a step up or down: the doorway's bottom may be at the lower floor, or lower
+    still where its geometry reaches down to the wall's base)."""
+    if room.contains(p, bottom + 0.1):
+        return True
+    if room.floor_z is None or not point_in_polygon(p, room.polygon):
+        return False
+    return (bottom - STEP_MAX <= room.floor_z <= max(bottom + STEP_MAX, top - HEADROOM)
+            and bottom < room.z_max)
+
+
+def _room_at(rooms, p, bottom, top, exclude=()):
+    """The smallest room a doorway from z = bottom to top opens onto at point p (2D), or None."""
+    hits = [ri for ri, r in enumerate(rooms) if ri not in exclude
+            and _opens_onto(r, p, bottom, top)]
     return min(hits, key=lambda ri: (rooms[ri].area, ri)) if hits else None
 
 
@@ -77,16 +97,20 @@ def locate(door, points, host_pieces, scale):
     return wi, pos, width, height, n, half
 
 
-def connect(pos, n, half, rooms, rsb_rooms):
+def connect(pos, n, half, rooms, rsb_rooms, top=None):
     """The rooms on both sides of a doorway: probes beyond each wall face, then space boundaries.
 
-    rsb_rooms: room indices that IfcRelSpaceBoundary names for this door (may be empty).
+    pos: on the wall's mid-plane at the doorway's bottom; top: the z of its top (default: pos z
+    plus 2.1 m). rsb_rooms: room indices that IfcRelSpaceBoundary names for this door (may be
+    empty). Two rooms whose floors differ by more than STEP_MAX are on different levels, not a
+    step apart: only the one whose floor is nearer the doorway's bottom is kept.
     """
-    z = pos[2] + 0.1
+    bottom = float(pos[2])
+    top = bottom + 2.1 if top is None else float(top)
     found = []
     for sign in (1.0, -1.0):
         probe = pos[:2] + sign * (half + PROBE_BEYOND) * n[:2]
-        ri = _room_at(rooms, probe, z, exclude=found)
+        ri = _room_at(rooms, probe, bottom, top, exclude=found)
         if ri is not None:
             found.append(ri)
     for ri in sorted(rsb_rooms):
@@ -94,4 +118,8 @@ def connect(pos, n, half, rooms, rsb_rooms):
             break
         if ri not in found:
             found.append(ri)
+    if len(found) == 2 and all(rooms[ri].floor_z is not None for ri in found):
+        a, b = (rooms[ri].floor_z for ri in found)
+        if abs(a - b) > STEP_MAX + 1e-6:
+            found = [min(found, key=lambda ri: (abs(rooms[ri].floor_z - bottom), ri))]
     return sorted(found)

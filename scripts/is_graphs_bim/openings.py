@@ -4,7 +4,10 @@ Doorless opening (kind "opening"): an IfcOpeningElement that voids a converted w
 (IfcRelVoidsElement), that no IfcRelFillsElement fills, and that is a passage, not a window:
 - it goes through the wall: its extent across the wall covers the wall's thickness (2 cm slack)
   and it overlaps the wall along its length by at least MIN_WIDTH;
-- its sill (lowest point) is at most MAX_SILL above the wall's bottom (the storey's floor);
+- its sill (lowest point) is at most MAX_SILL above the floor under it: the wall's bottom (the
+  storey's floor) or, where it is higher, the floor of a room beside the opening that lies at or
+  below the sill (on a split-level storey the wall stands on the lower floor, and an opening
+  onto the upper room starts at the upper floor);
 - its height inside the wall is at least MIN_HEIGHT.
 The rooms it joins are found from the geometry (the rooms beyond each face of the wall), as
 for doors without space links.
@@ -21,7 +24,7 @@ import numpy as np
 
 MIN_WIDTH = 0.5         # m: narrower passages are not doorways
 MIN_HEIGHT = 1.8        # m: lower openings are windows, hatches or niches
-MAX_SILL = 0.3          # m: above the wall's bottom; higher sills are windows
+MAX_SILL = 0.3          # m: above the floor under it; higher sills are windows
 ACROSS_SLACK = 0.02     # m
 SHARED_TOL = 0.05       # m: two space edges this close are one boundary line
 PARALLEL_COS = np.cos(np.radians(5.0))
@@ -38,9 +41,9 @@ class OpeningFit:
     sill: float = 0.0
 
 
-def fit_opening(points, piece):
+def fit_opening(points, piece, floors=()):
     """Whether an opening (its triangle vertices, metres) is a door-like passage through a wall
-    piece (walls.WallPiece)."""
+    piece (walls.WallPiece); floors: the floor heights of the rooms beside it."""
     a = piece.faces[0]
     n, t = a.normal, a.tangent
     mid = a.d - 0.5 * piece.thickness
@@ -55,12 +58,14 @@ def fit_opening(points, piece):
     width = min(s_t.max(), w1) - max(s_t.min(), w0)
     z0, z1 = float(points[:, 2].min()), float(points[:, 2].max())
     height = min(z1, piece.z_max) - max(z0, piece.z_min)
-    sill = z0 - piece.z_min
+    base = max([piece.z_min] + [f for f in floors if f is not None and f <= z0 + ACROSS_SLACK])
+    sill = z0 - base
     if width < MIN_WIDTH:
         return OpeningFit(False, f"overlaps its host wall along {max(width, 0.0):.2f} m only "
                           f"(< {MIN_WIDTH} m): not a passage", width, height, sill)
     if sill > MAX_SILL or height < MIN_HEIGHT:
-        return OpeningFit(False, f"window-like (sill {sill:.2f} m above the wall's bottom, "
+        under = "the wall's bottom" if base == piece.z_min else "the floor beside it"
+        return OpeningFit(False, f"window-like (sill {sill:.2f} m above {under}, "
                           f"height {height:.2f} m; a doorway needs a sill <= {MAX_SILL} m and a "
                           f"height >= {MIN_HEIGHT} m)", width, height, sill)
     return OpeningFit(True, "", float(width), float(height), float(sill))

@@ -19,6 +19,8 @@ class Room:
     z_max: float
     surfaces: set = field(default_factory=set)
     doorways: set = field(default_factory=set)
+    floor_z: float = None   # the floor walked on, and where it came from (room_floors.py)
+    floor_source: str = ""
 
     @property
     def ifc_id(self):

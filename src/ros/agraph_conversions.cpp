@@ -73,6 +73,7 @@ is_graphs::AGraph ToMsg(const agraph::AGraph& graph) {
     m.z_min = r.z_min;
     m.z_max = r.z_max;
     m.area = r.area;
+    m.floor_z = r.floor_z;
     m.surface_ids = CastIds<uint32_t>(r.surfaces);
     m.wall_ids = CastIds<uint32_t>(r.walls);
     m.doorway_ids = CastIds<uint32_t>(r.doorways);
@@ -158,6 +159,7 @@ agraph::AGraph FromMsg(const is_graphs::AGraph& msg) {
     r.z_min = m.z_min;
     r.z_max = m.z_max;
     r.area = m.area;
+    r.floor_z = m.floor_z;
     r.surfaces = CastIds<int>(m.surface_ids);
     r.walls = CastIds<int>(m.wall_ids);
     r.doorways = CastIds<int>(m.doorway_ids);

@@ -77,7 +77,7 @@ def test_walls_proper_keep_their_kind(make_house, run_converter, tmp_path):
     kinds = {w["name"]: (w["kind"], w["ifc_class"]) for w in g["walls"]}
     assert kinds["CW_east"] == ("curtain_wall", "IfcCurtainWall")
     assert kinds["W_south"] == ("wall", "IfcWall")
-    assert g["source"]["converter_version"] == "6"
+    assert g["source"]["converter_version"] == "7"
     assert all(r["kept"]["flush_elements"] == 0 for r in g["report"])
 
 

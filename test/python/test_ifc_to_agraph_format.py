@@ -14,7 +14,7 @@ FIELDS = {
     "walls": {"id", "ifc_id", "guid", "name", "kind", "ifc_class", "storey", "surfaces",
               "thickness", "start", "center", "length", "height", "external"},
     "rooms": {"id", "ifc_id", "guid", "name", "long_name", "storey", "polygon", "z_min", "z_max",
-              "center", "area", "surfaces", "walls", "doorways"},
+              "floor_z", "floor_source", "center", "area", "surfaces", "walls", "doorways"},
     "doorways": {"id", "ifc_id", "guid", "name", "storey", "wall", "position", "width", "height",
                  "rooms", "kind"},
 }

@@ -47,6 +47,7 @@ TEST(AGraphConversions, RoundTripKeepsTheFixture) {
     EXPECT_EQ(a.rooms[i].name, b.rooms[i].name);
     EXPECT_EQ(a.rooms[i].surfaces, b.rooms[i].surfaces);
     EXPECT_EQ(a.rooms[i].doorways, b.rooms[i].doorways);
+    EXPECT_DOUBLE_EQ(a.rooms[i].floor_z, b.rooms[i].floor_z);
     ASSERT_EQ(a.rooms[i].polygon.size(), b.rooms[i].polygon.size());
     for (size_t k = 0; k < a.rooms[i].polygon.size(); ++k)
       EXPECT_TRUE(a.rooms[i].polygon[k].isApprox(b.rooms[i].polygon[k]));

@@ -66,6 +66,12 @@ struct Room {
   std::vector<Eigen::Vector2d> polygon;  // counter-clockwise, not closed
   double z_min{0.0};
   double z_max{0.0};
+  /// The floor walked on in the room (file field `floor_z`, since converter 7): from the slab or
+  /// floor covering under it, else the space's bottom, the mesh, the storey's elevation. A file
+  /// without it (older converters) gives the storey's elevation, and floor_source "".
+  double floor_z{0.0};
+  /// "slab", "covering", "space", "mesh", "storey"; "" when the file has no floor_z.
+  std::string floor_source;
   Eigen::Vector3d center{Eigen::Vector3d::Zero()};
   double area{0.0};
   std::vector<int> surfaces;

@@ -102,6 +102,10 @@ void ReadRoom(const JsonFields& f, Room* r) {
   }
   r->z_min = f.Number("z_min");
   r->z_max = f.Number("z_max");
+  // Files of converter 6 and older have no floor_z: the storey's elevation, set once the
+  // storeys are read (FillMissingFloors).
+  r->floor_z = f.NumberOr("floor_z", std::numeric_limits<double>::quiet_NaN());
+  r->floor_source = f.StringOr("floor_source", "");
   r->center = f.Vector3("center");
   r->area = f.NumberOr("area", 0.0);
   r->surfaces = f.IndicesOr("surfaces");
@@ -156,6 +160,17 @@ void ReadArray(const JsonFields& root, const char* name, const char* ifc_class, 
   }
 }
 
+// A room without floor_z (a file of converter 6 or older) stands on its storey's elevation, the
+// height every room of a storey had before; floor_source stays "".
+void FillMissingFloors(AGraph* graph) {
+  for (Room& r : graph->rooms) {
+    if (!std::isnan(r.floor_z)) continue;
+    const bool known = r.storey >= 0 && r.storey < static_cast<int>(graph->storeys.size());
+    r.floor_z = known ? graph->storeys[r.storey].elevation : r.z_min;
+    r.floor_source.clear();
+  }
+}
+
 }  // namespace
 
 void AGraphFromJson(const json& root_json, AGraph* graph) {
@@ -204,6 +219,7 @@ void AGraphFromJson(const json& root_json, AGraph* graph) {
   ReadArray(root, "walls", "IfcWall", ReadWall, &graph->walls);
   ReadArray(root, "rooms", "IfcSpace", ReadRoom, &graph->rooms);
   ReadArray(root, "doorways", "IfcDoor", ReadDoorway, &graph->doorways);
+  FillMissingFloors(graph);
 }
 
 }  // namespace internal

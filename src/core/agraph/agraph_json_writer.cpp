@@ -63,6 +63,8 @@ json ToJson(const Room& r) {
   j["polygon"] = polygon;
   j["z_min"] = r.z_min;
   j["z_max"] = r.z_max;
+  j["floor_z"] = r.floor_z;
+  j["floor_source"] = r.floor_source;
   j["center"] = ToJson(r.center);
   j["area"] = r.area;
   j["surfaces"] = r.surfaces;
