@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """`make evaluate`: the localization on every full-length scenario bag against ground truth.
 
-For each scenario (bags/D*, R* and H*.yaml, not *_short; an R scenario whose full bag is
-absent falls back to its _short bag, and says so; a missing D bag is listed as missing), runs
+For each scenario (bags/D*, R*, H*, S*, M*, G*, E*, P*, A* and L*.yaml, not *_short; an R
+scenario whose full bag is absent falls back to its _short bag, and says so; a missing D bag is listed as missing), runs
 replay_pipeline (the core the nodes run, synchronously, without ROS transport: deterministic)
 and compares with the ground truth, WITHOUT alignment (evo):
   - iS-Graphs: the pose in the BIM frame, from the first pose after localization on;
@@ -247,7 +247,7 @@ def main():
 
     yamls = args.scenarios or sorted(
         y for pattern in ("D*.yaml", "R*.yaml", "H*.yaml", "S*.yaml", "M*.yaml", "G*.yaml", "E*.yaml",
-                        "P*.yaml", "A*.yaml")
+                        "P*.yaml", "A*.yaml", "L*.yaml")
         for y in glob.glob(os.path.join(REPO, "bags", pattern)) if not y.endswith("_short.yaml"))
     if not os.access(args.replay, os.X_OK):
         print(f"evaluate: error: {args.replay} not built (make build)", file=sys.stderr)

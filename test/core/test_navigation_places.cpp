@@ -3,6 +3,7 @@
 // the wall; ambiguous and unknown names; the time per call.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -23,7 +24,7 @@ Eigen::Vector2d Heading(double yaw) { return {std::cos(yaw), std::sin(yaw)}; }
 TEST(NavigationPlaces, EveryRoomsGoalIsInsideItAndFarthestFromItsWalls) {
   const auto buildings = NavigationBuildings();
   if (buildings.empty()) GTEST_SKIP() << "no building converts here (make setup)";
-  int rooms = 0, calls = 0;
+  int rooms = 0, calls = 0, split_rooms = 0;
   double worst_ms = 0.0, total_ms = 0.0;
   for (const auto& b : buildings) {
     const PlaceIndex index(*b.graph, PlaceConfig{});
@@ -48,8 +49,16 @@ TEST(NavigationPlaces, EveryRoomsGoalIsInsideItAndFarthestFromItsWalls) {
       EXPECT_GE(inside + 0.01, centre) << b.name << " room " << r.name;
       EXPECT_EQ(place->storey, r.storey);
       EXPECT_EQ(place->storey_name, b.graph->storeys[r.storey].name);
-      EXPECT_DOUBLE_EQ(place->position.z(), b.graph->storeys[r.storey].elevation);
+      EXPECT_DOUBLE_EQ(place->position.z(), r.floor_z) << b.name << " room " << r.name;
+      if (b.name == "split.ifc" && r.name == "Workshop") {  // the lower of its two levels
+        EXPECT_NEAR(place->position.z(), -0.45, 0.001);
+        ++split_rooms;
+      }
     }
+  }
+  if (std::any_of(buildings.begin(), buildings.end(),
+                  [](const auto& b) { return b.name == "split.ifc"; })) {
+    EXPECT_EQ(split_rooms, 1) << "split.ifc's workshop not located";
   }
   std::printf("[ locate   ] %d rooms of %zu buildings, all inside; %.3f ms per call (worst %.3f)\n",
               rooms, buildings.size(), total_ms / std::max(calls, 1), worst_ms);

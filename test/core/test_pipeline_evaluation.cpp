@@ -113,6 +113,34 @@ TEST(PipelineEvaluation, StoreyAtHeightIsTheHighestFloorBelow) {
   EXPECT_EQ(agraph::StoreyAtHeight(building, -4.0), -1);
 }
 
+// A split level: a storey whose rooms stand up to 0.6 m below its elevation begins at their
+// floor (the robot there is on it, not below every storey); a room further down does not count.
+TEST(PipelineEvaluation, StoreyAtHeightCountsASplitLevelsLowerFloor) {
+  agraph::AGraph building;
+  for (const auto& [id, elevation] : {std::pair<int, double>{0, 0.0}, {1, 3.0}}) {
+    agraph::Storey s;
+    s.id = id;
+    s.elevation = elevation;
+    s.height = 3.0;
+    building.storeys.push_back(s);
+  }
+  EXPECT_EQ(agraph::StoreyAtHeight(building, -0.2), -1);
+  agraph::Room lower;
+  lower.storey = 0;
+  lower.floor_z = -0.45;
+  building.rooms.push_back(lower);
+  agraph::Room sunk;  // on the upper storey, 1 m below it: not a split level (a bad floor)
+  sunk.storey = 1;
+  sunk.floor_z = 2.0;
+  building.rooms.push_back(sunk);
+  EXPECT_DOUBLE_EQ(agraph::StoreyFloor(building, 0), -0.45);
+  EXPECT_DOUBLE_EQ(agraph::StoreyFloor(building, 1), 3.0);
+  EXPECT_EQ(agraph::StoreyAtHeight(building, -0.2), 0);
+  EXPECT_EQ(agraph::StoreyAtHeight(building, 2.5), 0);
+  EXPECT_EQ(agraph::HeightOutsideStoreys(building, -1.4), "");  // 1 m margin
+  EXPECT_NE(agraph::HeightOutsideStoreys(building, -1.5), "");
+}
+
 // Issue 22: a robot beyond every storey's height is named (the merger warns with it).
 TEST(PipelineEvaluation, AHeightOutsideEveryStoreyIsNamed) {
   agraph::AGraph building;

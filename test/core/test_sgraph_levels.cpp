@@ -28,6 +28,16 @@ TEST(SGraphLevels, AStairClimbEndsOnANewLevelOnceSettled) {
   EXPECT_EQ(t.Add(7.0), 0);
 }
 
+TEST(SGraphLevels, StepsAndRampsInsideAStoreyAreNoNewLevel) {
+  // A split level: down three 0.15 m steps (0.45 m), along, down a ramp to 0.6 m below, back up.
+  LevelTracker t;
+  EXPECT_EQ(t.Add(0.50), 0);
+  for (double z : {0.35, 0.20, 0.05, 0.05, 0.04, 0.0, -0.05, -0.10, -0.10, -0.09, 0.2, 0.5, 0.5})
+    EXPECT_EQ(t.Add(z), 0) << z;
+  EXPECT_EQ(t.size(), 1);
+  EXPECT_DOUBLE_EQ(t.Height(0), 0.50);
+}
+
 TEST(SGraphLevels, AHalfStoreyLandingIsNotALevel) {
   LevelTracker t;
   t.Add(0.5);

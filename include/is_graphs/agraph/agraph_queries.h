@@ -13,9 +13,14 @@ namespace agraph {
 /// numeric index. The error lists the storeys there are.
 Result<int> FindStorey(const AGraph& graph, const std::string& storey);
 
+/// The lowest floor of storey index `storey`: its elevation, or a room's floor_z below it by up
+/// to 0.6 m (a split level, a sunken room).
+double StoreyFloor(const AGraph& graph, int storey);
+
 /// The storey (id) a robot whose base is at height `z` in B stands on: the one with the highest
-/// elevation at or below z (+ 5 cm for rounding); -1 when z lies below every storey. A match on
-/// another storey is a wrong match, however well x, y and yaw agree (floors of one plan).
+/// lowest floor (StoreyFloor) at or below z (+ 5 cm for rounding); -1 when z lies below every
+/// storey. A match on another storey is a wrong match, however well x, y and yaw agree (floors
+/// of one plan).
 int StoreyAtHeight(const AGraph& graph, double z);
 
 /// "" when a robot whose base is at height `z` in B stands within the building's storeys: from

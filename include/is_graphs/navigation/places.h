@@ -22,7 +22,8 @@ struct PlaceConfig {
 
 /// A goal in B: a room (its interior point farthest from its walls, yaw 0), a door (in front of
 /// it on the side of its first room, facing it) or a wall (in front of its face's middle, on
-/// the side of a room it bounds, facing it); z is the storey's elevation.
+/// the side of a room it bounds, facing it); z is the floor of the room it stands in (its floor_z:
+/// split levels), else the storey's elevation.
 struct Place {
   enum class Kind { kRoom, kDoor, kWall };
   Kind kind{Kind::kRoom};

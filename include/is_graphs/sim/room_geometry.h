@@ -27,6 +27,12 @@ std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points);
 /// `margin` from the edges, else the interior grid point farthest from the edges.
 Eigen::Vector2d RoomInteriorPoint(const agraph::Room& room, double margin = 0.6);
 
+/// The floor something at p on `storey` stands on: the floor_z of the room it stands in when that
+/// lies more than 5 cm from `floor_z` (the start's floor: a split level), else floor_z (a few mm
+/// of finishes keep a storey's objects on one floor).
+double FloorUnder(const agraph::AGraph& graph, int storey, const Eigen::Vector2d& p,
+                  double floor_z);
+
 /// True when p is inside the (simple) polygon.
 bool PointInPolygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
 /// Distance from p to the polygon's boundary.

@@ -130,12 +130,23 @@ Result<AGraph> SelectStorey(const AGraph& graph, int storey_index) {
   return Result<AGraph>::Ok(std::move(out));
 }
 
+double StoreyFloor(const agraph::AGraph& building, int storey) {
+  constexpr double kMaxStep = 0.6;  // m: a split level; more is another storey (or a bad floor)
+  const double elevation = building.storeys[storey].elevation;
+  double lowest = elevation;
+  for (const agraph::Room& r : building.rooms)
+    if (r.storey == building.storeys[storey].id && r.floor_z >= elevation - kMaxStep)
+      lowest = std::min(lowest, r.floor_z);
+  return lowest;
+}
+
 int StoreyAtHeight(const agraph::AGraph& building, double z) {
   int best = -1;
+  double best_floor = 0.0;
   for (size_t i = 0; i < building.storeys.size(); ++i) {
-    const agraph::Storey& s = building.storeys[i];
-    if (s.elevation > z + 0.05) continue;
-    if (best < 0 || s.elevation > building.storeys[best].elevation) best = static_cast<int>(i);
+    const double floor = StoreyFloor(building, static_cast<int>(i));
+    if (floor > z + 0.05) continue;
+    if (best < 0 || floor > best_floor) best = static_cast<int>(i), best_floor = floor;
   }
   return best < 0 ? -1 : building.storeys[best].id;
 }
@@ -143,9 +154,10 @@ int StoreyAtHeight(const agraph::AGraph& building, double z) {
 std::string HeightOutsideStoreys(const agraph::AGraph& building, double z, double margin) {
   if (building.storeys.empty()) return "";
   constexpr double kDefaultStoreyHeight = 3.0;  // m, where the IFC gives no height
-  double lowest = building.storeys.front().elevation, top = lowest;
-  for (const agraph::Storey& s : building.storeys) {
-    lowest = std::min(lowest, s.elevation);
+  double lowest = StoreyFloor(building, 0), top = building.storeys.front().elevation;
+  for (size_t i = 0; i < building.storeys.size(); ++i) {
+    const agraph::Storey& s = building.storeys[i];
+    lowest = std::min(lowest, StoreyFloor(building, static_cast<int>(i)));
     top = std::max(top, s.elevation + (s.height > 0.0 ? s.height : kDefaultStoreyHeight));
   }
   if (z >= lowest - margin && z <= top + margin) return "";

@@ -90,7 +90,10 @@ std::string Summarize(const AGraph& graph) {
       out << "    " << std::setw(3) << r->id << "  " << r->name;
       if (!r->long_name.empty()) out << " \"" << r->long_name << "\"";
       out << "  " << r->area << " m^2, " << r->surfaces.size() << " surfaces, "
-          << r->doorways.size() << " doorways\n";
+          << r->doorways.size() << " doorways";
+      if (std::abs(r->floor_z - storey.elevation) > 0.05)  // a split level: its own floor
+        out << ", floor " << r->floor_z << " m";
+      out << "\n";
     }
     for (const ConversionDrop& d : graph.dropped)
       if (d.storey == storey.id)

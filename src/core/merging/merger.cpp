@@ -4,6 +4,7 @@
 #include "is_graphs/agraph/agraph_validation.h"
 #include "is_graphs/geometry/se3.h"
 #include "is_graphs/merging/recent_evidence.h"
+#include "is_graphs/merging/room_floors.h"
 #include "is_graphs/sgraph/levels.h"
 
 namespace is_graphs {
@@ -92,7 +93,16 @@ double Merger::HeightOfMap(const sgraph::SGraph& s_graph, double fallback) const
   const sgraph::Floor* floor = &s_graph.floors.front();
   for (const auto& f : s_graph.floors)
     if (f.id == level) floor = &f;
-  return elevation - floor->height;
+  // Split levels, steps and ramps: the floor of the rooms the robot stood in, when known. The
+  // body stands as high above every floor as above the first floor plane (levels.h).
+  const double from_storey = elevation - floor->height;
+  if (s_graph.keyframes.empty()) return from_storey;
+  const double standing =
+      s_graph.keyframes.front().pose.translation().z() - s_graph.floors.front().height;
+  const auto from_rooms =
+      HeightOfMapFromRoomFloors(a_graph_, storey, s_graph, sgraph::HasLevels(s_graph) ? level : -1,
+                                xi_, standing, from_storey);
+  return from_rooms ? *from_rooms : from_storey;
 }
 
 int Merger::StoreyWalked(const sgraph::SGraph& s_graph) const {

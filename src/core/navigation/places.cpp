@@ -56,6 +56,15 @@ bool InsideRoom(const agraph::AGraph& graph, int room, const Eigen::Vector2d& p)
          SignedDistanceToPolygon(graph.rooms[room].polygon, p) > 0.0;
 }
 
+// The floor under p on `storey`: its room's floor_z (split levels), else `otherwise`.
+double FloorUnder(const agraph::AGraph& graph, int storey, const Eigen::Vector2d& p,
+                  double otherwise) {
+  for (const auto& r : graph.rooms)
+    if (r.storey == storey && r.polygon.size() >= 3 && SignedDistanceToPolygon(r.polygon, p) > 0.0)
+      return r.floor_z;
+  return otherwise;
+}
+
 Place DoorPlace(const agraph::AGraph& graph, const agraph::Doorway& d, const PlaceConfig& c) {
   Place place = Base(graph, Place::Kind::kDoor, d.id, d.storey);
   place.name = d.name;
@@ -179,6 +188,8 @@ PlaceIndex::PlaceIndex(const agraph::AGraph& graph, const PlaceConfig& config) {
   }
   for (const auto& d : graph.doorways) places_.push_back(DoorPlace(graph, d, config));
   for (const auto& w : graph.walls) places_.push_back(WallPlace(graph, w, config));
+  for (Place& p : places_)  // on the floor of the room the place stands in (split levels)
+    p.position.z() = FloorUnder(graph, p.storey, p.position.head<2>(), p.position.z());
 }
 
 Result<std::vector<Place>> PlaceIndex::Locate(const std::string& query,

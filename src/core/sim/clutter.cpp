@@ -114,7 +114,7 @@ Result<int> PlaceRandomClutter(SceneMesh* scene, const agraph::AGraph& graph, in
         blocks = blocks || (inner + s * seg - p).norm() < half + 0.9;
       }
       if (blocks) continue;
-      AddClutter(scene, shape, p, floor_z, yaw);
+      AddClutter(scene, shape, p, FloorUnder(graph, storey, p, floor_z), yaw);
       ++placed;
       break;
     }

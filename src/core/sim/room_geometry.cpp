@@ -110,6 +110,16 @@ double DistanceToPolygonEdges(const std::vector<Eigen::Vector2d>& polygon,
   return best;
 }
 
+double FloorUnder(const agraph::AGraph& graph, int storey, const Eigen::Vector2d& p,
+                  double floor_z) {
+  constexpr double kSameFloor = 0.05;  // m
+  for (const agraph::Room& r : graph.rooms) {
+    if (r.storey != storey || r.polygon.size() < 3 || !PointInPolygon(r.polygon, p)) continue;
+    return std::abs(r.floor_z - floor_z) > kSameFloor ? r.floor_z : floor_z;
+  }
+  return floor_z;
+}
+
 Eigen::Vector2d RoomInteriorPoint(const agraph::Room& room, double margin) {
   const std::vector<Eigen::Vector2d>& poly = room.polygon;
   const Eigen::Vector2d centroid = room.center.head<2>();

@@ -251,7 +251,8 @@ Result<SceneMesh> BuildScene(const geometry::TriangleMesh& bim, const agraph::AG
       }
       xy += RoomInteriorPoint(graph.rooms[room.value()]);
     }
-    AddClutter(&scene, ClutterShapeOf(c, storey_height), xy, floor_z, c.yaw_deg * M_PI / 180.0);
+    AddClutter(&scene, ClutterShapeOf(c, storey_height), xy, FloorUnder(graph, storey, xy, floor_z),
+               c.yaw_deg * M_PI / 180.0);
   }
 
   // Random clutter, kept off the walls, the doorways and the robot's paths (room interior point
