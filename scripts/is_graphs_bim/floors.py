@@ -29,6 +29,14 @@ UP_NZ = 0.9             # a triangle facing up
 CLASS = "FloorFromSpace"
 
 
+def upward_triangles(shape):
+    """[(plan Polygon, z)] of a shape's upward-facing triangles (z: the triangle's centroid's)."""
+    normals, areas, centroids = shape.triangle_normals_areas()
+    up = (normals[:, 2] > UP_NZ) & (areas > 1e-8)
+    return [(Polygon(shape.verts[tri, :2]), float(z))
+            for tri, z in zip(shape.faces[up], centroids[up, 2])]
+
+
 @dataclass
 class Floors:
     shapes: list = field(default_factory=list)            # [Shape] (id: the IfcSpace's step id)
@@ -62,12 +70,10 @@ class _UpFaces:
             sh = shapes.get(sid)
             if sh is None:
                 continue
-            normals, areas, centroids = sh.triangle_normals_areas()
-            up = (normals[:, 2] > UP_NZ) & (areas > 1e-8)
-            for tri, z in zip(sh.faces[up], centroids[up, 2]):
-                polys.append(Polygon(sh.verts[tri, :2]))
-                lo.append(float(z))
-                hi.append(float(z))
+            for poly, z in upward_triangles(sh):
+                polys.append(poly)
+                lo.append(z)
+                hi.append(z)
             for rel in getattr(model.file.by_id(sid), "HasOpenings", None) or ():
                 op = shapes.get(rel.RelatedOpeningElement.id())
                 if op is None:

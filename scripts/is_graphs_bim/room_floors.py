@@ -23,10 +23,9 @@ from collections import defaultdict
 
 import numpy as np
 import shapely
-from shapely.geometry import Polygon
 
 from . import ifc_model
-from .floors import UP_NZ, _floor_elements, _plan_polygon
+from .floors import _floor_elements, _plan_polygon, upward_triangles
 from .mesh import in_mesh
 
 FLOOR_BAND = 0.5     # m: a floor element's top this far below or above the reference floors it
@@ -47,11 +46,9 @@ class _Tops:
             sh = shapes.get(sid)
             if sh is None:
                 continue
-            normals, areas, centroids = sh.triangle_normals_areas()
-            up = (normals[:, 2] > UP_NZ) & (areas > 1e-8)
-            for tri, z in zip(sh.faces[up], centroids[up, 2]):
-                polys.append(Polygon(sh.verts[tri, :2]))
-                zs.append(float(z))
+            for poly, z in upward_triangles(sh):
+                polys.append(poly)
+                zs.append(z)
                 srcs.append(source_of(sid))
         self.polys = np.array(polys, dtype=object)
         self.z = np.array(zs)
