@@ -173,13 +173,30 @@ def build_house(path, unit="m", schema="IFC4", spaces=True, walls=True, zero_wal
                              extras, floor_slab=floor_slab)
 
 
+def _spatial_skeleton(f, project, building_name):
+    """The Model and Body contexts and IfcSite > IfcBuilding `building_name` > IfcBuildingStorey
+    'EG' under `project` (not placed): (body, site, building, storey)."""
+    import ifcopenshell.api.aggregate
+    import ifcopenshell.api.context
+    import ifcopenshell.api.root
+    model = ifcopenshell.api.context.add_context(f, context_type="Model")
+    body = ifcopenshell.api.context.add_context(f, context_type="Model", context_identifier="Body",
+                                                target_view="MODEL_VIEW", parent=model)
+    site = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSite", name="Site")
+    building = ifcopenshell.api.root.create_entity(f, ifc_class="IfcBuilding", name=building_name)
+    storey = ifcopenshell.api.root.create_entity(f, ifc_class="IfcBuildingStorey", name="EG")
+    ifcopenshell.api.aggregate.assign_object(f, relating_object=project, products=[site])
+    ifcopenshell.api.aggregate.assign_object(f, relating_object=site, products=[building])
+    ifcopenshell.api.aggregate.assign_object(f, relating_object=building, products=[storey])
+    return body, site, building, storey
+
+
 def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, external_pset,
                       south_external, partition="door", window_opening=False,
                       virtual_element=False, curtain_wall=None, storey_elevation=0.0,
                       storey_placement=True, extras=(), floor_slab=True):
     import ifcopenshell.guid
     import ifcopenshell.api.aggregate
-    import ifcopenshell.api.context
     import ifcopenshell.api.feature
     import ifcopenshell.api.geometry
     import ifcopenshell.api.pset
@@ -194,15 +211,7 @@ def _build_house_body(f, path, k, unit, spaces, walls, zero_wall, lonely_door, e
             lu = ifcopenshell.api.unit.add_si_unit(f, unit_type="LENGTHUNIT",
                                                    prefix="MILLI" if unit == "mm" else None)
         ifcopenshell.api.unit.assign_unit(f, units=[lu])
-    model = ifcopenshell.api.context.add_context(f, context_type="Model")
-    body = ifcopenshell.api.context.add_context(f, context_type="Model", context_identifier="Body",
-                                                target_view="MODEL_VIEW", parent=model)
-    site = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSite", name="Site")
-    building = ifcopenshell.api.root.create_entity(f, ifc_class="IfcBuilding", name="TestHouse")
-    storey = ifcopenshell.api.root.create_entity(f, ifc_class="IfcBuildingStorey", name="EG")
-    ifcopenshell.api.aggregate.assign_object(f, relating_object=project, products=[site])
-    ifcopenshell.api.aggregate.assign_object(f, relating_object=site, products=[building])
-    ifcopenshell.api.aggregate.assign_object(f, relating_object=building, products=[storey])
+    body, site, building, storey = _spatial_skeleton(f, project, "TestHouse")
     for p in (site, building, storey):
         _placement(f, p, 0.0, 0.0)
     ids = {}

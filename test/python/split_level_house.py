@@ -13,7 +13,7 @@ B's slab, space_b_bottom moves B's space bottom, proxy_b puts an IfcBuildingElem
 """
 import numpy as np
 
-from conftest import _box, _placement
+from conftest import _box, _placement, _spatial_skeleton
 
 
 def build_split_house(path, step=0.45, sill="upper", storey_elevation=-0.6, slab_b=True,
@@ -21,7 +21,6 @@ def build_split_house(path, step=0.45, sill="upper", storey_elevation=-0.6, slab
                       proxy_b=False):
     """Writes the file; returns {name: step id}."""
     import ifcopenshell.api.aggregate
-    import ifcopenshell.api.context
     import ifcopenshell.api.feature
     import ifcopenshell.api.geometry
     import ifcopenshell.api.project
@@ -32,15 +31,7 @@ def build_split_house(path, step=0.45, sill="upper", storey_elevation=-0.6, slab
     project = ifcopenshell.api.root.create_entity(f, ifc_class="IfcProject", name="Split")
     ifcopenshell.api.unit.assign_unit(
         f, units=[ifcopenshell.api.unit.add_si_unit(f, unit_type="LENGTHUNIT")])
-    model = ifcopenshell.api.context.add_context(f, context_type="Model")
-    body = ifcopenshell.api.context.add_context(f, context_type="Model", context_identifier="Body",
-                                                target_view="MODEL_VIEW", parent=model)
-    site = ifcopenshell.api.root.create_entity(f, ifc_class="IfcSite", name="Site")
-    building = ifcopenshell.api.root.create_entity(f, ifc_class="IfcBuilding", name="SplitHouse")
-    storey = ifcopenshell.api.root.create_entity(f, ifc_class="IfcBuildingStorey", name="EG")
-    ifcopenshell.api.aggregate.assign_object(f, relating_object=project, products=[site])
-    ifcopenshell.api.aggregate.assign_object(f, relating_object=site, products=[building])
-    ifcopenshell.api.aggregate.assign_object(f, relating_object=building, products=[storey])
+    body, site, building, storey = _spatial_skeleton(f, project, "SplitHouse")
     for p in (site, building):
         _placement(f, p, 0.0, 0.0)
     _placement(f, storey, 0.0, 0.0, storey_elevation)

@@ -15,8 +15,7 @@ sys.path.insert(0, str(ROOT / "scripts"))
 
 from is_graphs_bim.building_layout import LayoutError, parse_layout  # noqa: E402
 from test_make_building import MAKE, PYTHON  # noqa: E402
-
-_DELETE = object()
+from test_make_building_storeys import _DELETE, _edit as _edit_one  # noqa: E402
 
 
 def split_data() -> dict:
@@ -24,16 +23,12 @@ def split_data() -> dict:
 
 
 def _edit(*changes):
-    """Edits (path, value) of the layout; value _DELETE removes the key."""
+    """Edits (path, value) of the layout, in turn; value _DELETE removes the key."""
+    edits = [_edit_one(path, value) for path, value in changes]
+
     def edit(d):
-        for path, value in changes:
-            cur = d
-            for k in path[:-1]:
-                cur = cur[k]
-            if value is _DELETE:
-                del cur[path[-1]]
-            else:
-                cur[path[-1]] = value
+        for one in edits:
+            d = one(d)
         return d
     return edit
 
