@@ -66,6 +66,9 @@ is_graphs::GraphMatch ToMsg(const matching::GraphMatch& match) {
   msg.storey_id = match.storey;
   msg.competing_storey_ids.assign(match.competing_storeys.begin(), match.competing_storeys.end());
   msg.hint = match.hint;
+  msg.scan_set = match.scan_set;
+  msg.scan_margin = match.scan_margin;
+  msg.scan_search = match.scan_search;
   return msg;
 }
 
@@ -94,6 +97,9 @@ matching::GraphMatch FromMsg(const is_graphs::GraphMatch& msg) {
   match.storey = msg.storey_id;
   match.competing_storeys.assign(msg.competing_storey_ids.begin(), msg.competing_storey_ids.end());
   match.hint = msg.hint;
+  match.scan_set = msg.scan_set;
+  match.scan_margin = msg.scan_margin;
+  match.scan_search = msg.scan_search;
   return match;
 }
 

@@ -24,6 +24,8 @@ is_graphs::SGraph ToMsg(const sgraph::SGraph& graph) {
     m.relative_odom = ToPose(k.relative_odom);
     ToArray(k.odom_information, m.odom_information);
     m.level = k.level;
+    m.slice.reserve(3 * k.slice.size());
+    for (const Eigen::Vector3f& q : k.slice) m.slice.insert(m.slice.end(), {q.x(), q.y(), q.z()});
     msg.keyframes.push_back(m);
   }
   for (const auto& p : graph.planes) {
@@ -97,7 +99,12 @@ sgraph::SGraph FromMsg(const is_graphs::SGraph& msg) {
     k.relative_odom = FromPose(m.relative_odom);
     k.odom_information = FromArray<6, 6>(m.odom_information);
     k.level = m.level;
-    graph.keyframes.push_back(k);
+    // x y z triples; a trailing partial triple (a malformed message) is ignored.
+    for (size_t i = 0; i + 2 < m.slice.size(); i += 3)
+      if (std::isfinite(m.slice[i]) && std::isfinite(m.slice[i + 1]) &&
+          std::isfinite(m.slice[i + 2]))
+        k.slice.emplace_back(m.slice[i], m.slice[i + 1], m.slice[i + 2]);
+    graph.keyframes.push_back(std::move(k));
   }
   for (const auto& m : msg.planes) {
     sgraph::Plane p;

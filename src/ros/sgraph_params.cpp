@@ -87,6 +87,11 @@ SGraphNodeParams ReadParams(const ros::NodeHandle& pnh) {
   Read(pnh, "association_coplanar_tolerance", f.association_coplanar_tolerance);
   Read(pnh, "consistency_min_walls", f.consistency_min_walls);
   Read(pnh, "consistency_min_keyframes", f.consistency_min_keyframes);
+  Read(pnh, "slice_low", f.slice_low);
+  Read(pnh, "slice_high", f.slice_high);
+  Read(pnh, "slice_cell", f.slice_cell);
+  Read(pnh, "slice_max_points", f.slice_max_points);
+  Read(pnh, "slice_keyframes", f.slice_keyframes);
   Read(pnh, "consistency_angle_deg", f.consistency_angle_deg);
   Read(pnh, "consistency_angle_deg_per_m", f.consistency_angle_deg_per_m);
   Read(pnh, "detect_rooms", f.detect_rooms);

@@ -76,6 +76,7 @@ sgraph::SGraph MakeSGraph() {
         Eigen::Translation3d(1.0, 0.0, 0.0) * Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ());
     k.odom_information = Eigen::Matrix<double, 6, 6>::Identity() * (i + 1);
     k.odom_information(0, 5) = k.odom_information(5, 0) = 0.25;
+    for (int j = 0; j < i; ++j) k.slice.emplace_back(0.5f * j, -1.25f, 0.75f + j);  // 0, 1, 2
     g.keyframes.push_back(k);
   }
   sgraph::Plane p;
@@ -134,6 +135,7 @@ TEST(SGraphConversions, RoundTripKeepsEveryField) {
     EXPECT_TRUE(a.keyframes[i].odom_pose.isApprox(b.keyframes[i].odom_pose, 1e-12));
     EXPECT_TRUE(a.keyframes[i].relative_odom.isApprox(b.keyframes[i].relative_odom, 1e-12));
     EXPECT_TRUE(a.keyframes[i].odom_information.isApprox(b.keyframes[i].odom_information));
+    EXPECT_EQ(a.keyframes[i].slice, b.keyframes[i].slice);
   }
   ASSERT_EQ(b.planes.size(), 1u);
   EXPECT_EQ(b.planes[0].id, 4);
@@ -178,7 +180,13 @@ TEST(GraphMatchConversions, RoundTripKeepsPairsAndDeviations) {
   a.storey = 3;
   a.competing_storeys = {0, 2};
   a.hint = "in force: pose hint (1.00, 2.00, 3.0 deg)";
+  a.scan_set = 2;
+  a.scan_margin = 0.05;
+  a.scan_search = "2 poses within 0.05 of the best 0.8";
   const matching::GraphMatch b = ros_conversions::FromMsg(ros_conversions::ToMsg(a));
+  EXPECT_EQ(b.scan_set, 2);
+  EXPECT_DOUBLE_EQ(b.scan_margin, 0.05);
+  EXPECT_EQ(b.scan_search, a.scan_search);
   EXPECT_EQ(b.status, a.status);
   EXPECT_EQ(b.storey, 3);
   EXPECT_EQ(b.competing_storeys, (std::vector<int>{0, 2}));

@@ -83,6 +83,14 @@ TEST_F(SGraphNodeTest, PublishesAGraphOnTheBuildingsWalls) {
   }
   for (const auto& r : graph.rooms)
     for (int p : r.planes) EXPECT_EQ(plane_ids.count(p), 1u) << "room " << r.id << " plane " << p;
+  // The newest slice_keyframes (3) keyframes carry their slice, the older ones none.
+  for (size_t i = 0; i < graph.keyframes.size(); ++i) {
+    const bool newest = i + 3 >= graph.keyframes.size();
+    if (newest)
+      EXPECT_GT(graph.keyframes[i].slice.size(), 200u) << "keyframe " << i;
+    else
+      EXPECT_TRUE(graph.keyframes[i].slice.empty()) << "keyframe " << i;
+  }
   ASSERT_GT(truth_.size(), 100u);
   const auto trajectory = sgraph::EvaluateTrajectory(graph, truth_);
   EXPECT_LT(trajectory.sgraph_rmse, 0.1);

@@ -69,6 +69,12 @@ struct GraphMatch {
   // What a pose hint did ("" without one; HintedMatching, pose_hint.h): "in force: ...",
   // "in force, agrees: ..." or "rejected: why".
   std::string hint;
+  // The scan search on the newest keyframes' slices (MatcherConfig scan_proposals): the poses
+  // the scans cannot tell apart (-1: no set: not run, or why in scan_search), the margin, and
+  // what it found ("2 poses within 0.05 of the best 0.81 (storeys 0)", "too few points: ...").
+  int scan_set{-1};
+  double scan_margin{0.0};
+  std::string scan_search;
 };
 
 /// The storeys of `match`'s competing hypotheses other than its own, sorted, distinct: not empty

@@ -18,6 +18,7 @@
 #include "is_graphs/matching/matcher_config.h"
 #include "is_graphs/matching/pose_hint.h"
 #include "is_graphs/matching/room_descriptor.h"
+#include "is_graphs/matching/scan_search.h"
 #include "is_graphs/matching/sight_evidence.h"
 #include "is_graphs/matching/surface_evidence.h"
 #include "is_graphs/matching/wall_crossings.h"
@@ -85,6 +86,7 @@ class GraphMatcher {
     cache_.clear();
     last_best_.reset();
     last_checked_.reset();
+    scan_view_ = ScanView();
     if (doubter_) doubter_->ForgetHistory();
   }
 
@@ -191,6 +193,26 @@ class GraphMatcher {
   /// `pose` refitted to the planes of `walls` and the A-surfaces they lie along under it.
   Pose2 Refine(const std::vector<WallSegment>& walls, const Pose2& pose, int storey) const;
 
+  // The scan search (graph_matcher_scans.cpp): the poses the newest keyframes' slices cannot
+  // tell apart, on every storey a proposal may be on.
+  struct ScanPoseOn {
+    Pose2 pose;
+    int storey{-1};
+    double score{0.0};
+  };
+  struct ScanView {
+    bool certified{false};        // `set` holds every pose within `margin` of the best
+    std::vector<ScanPoseOn> set;  // best first
+    double best{0.0}, margin{0.0};
+    std::string summary;      // GraphMatch::scan_search
+    std::vector<double> key;  // what it was made of (SearchScans)
+    double milliseconds{0.0};
+  };
+  const ScanView& SearchScans(const sgraph::SGraph& graph);
+  /// Whether `h` is one of the scan set's poses (always true without a certified set).
+  bool InScanSet(const Hypothesis& h, const std::vector<Eigen::Vector2d>& points) const;
+  void FillScanSearch(GraphMatch* out) const;
+
   Hypothesis Grow(const Pose2& start, const RoomCandidate* seed,
                   const std::vector<RoomDescriptor>& s_rooms,
                   const std::vector<std::vector<RoomCandidate>>& candidates,
@@ -210,6 +232,8 @@ class GraphMatcher {
   SurfaceEvidence surfaces_;
   DoorwayEvidence doorways_;
   std::vector<Corner> a_corners_;
+  ScanSearch scan_;     // built with the A-Graph when scan_proposals
+  ScanView scan_view_;  // of the last SearchScans, reused while its keyframes are the same
   std::map<int, CachedRoom> cache_;  // by S-room id
   std::optional<Pose2> last_best_;
   std::optional<Pose2> last_checked_;        // the last UNIQUE motion the walls agreed with

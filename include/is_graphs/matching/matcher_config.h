@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "is_graphs/matching/scan_search.h"
+
 namespace is_graphs {
 namespace matching {
 
@@ -94,6 +96,16 @@ struct MatcherConfig {
   // many walls (bench_matching: 20 S-rooms of 200 A-rooms, 17 -> 123 ms cold with every answer
   // checked), and every wrong UNIQUE the campaigns found paired 2-4 rooms.
   int proposal_cross_check_max_rooms{5};
+  // --- the scan search (scan_search.h) on the newest keyframes' slices ---
+  // The poses (B_x_M, storey) the slices cannot tell apart, certified by the search's bound, join
+  // the proposals; a proposal (or a competitor of the best) outside that set is out: the scans
+  // put it more than scan_search.margin below the best. The proposals' best must be in the set,
+  // else the two disagree and nothing is UNIQUE from them. Too many poses, too few points or no
+  // walls at the slice's height: no set, the proposals as without it (graph_match says why).
+  // Off by default: on one keyframe its set is still too large to decide on (a room's view fits
+  // 4-25 poses within the margin) and a search costs 0.1-0.4 s per storey (docs/matching.md).
+  bool scan_proposals{false};
+  ScanSearchConfig scan_search;
   // --- decision ---
   double ambiguity_margin{0.4};      // hypotheses scoring within this of the best compete
   double cluster_yaw_deg{3.0};       // hypotheses closer than this (and cluster_translation)

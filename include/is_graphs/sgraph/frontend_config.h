@@ -93,6 +93,17 @@ struct FrontendConfig {
   double consistency_angle_deg{1.5};
   double consistency_angle_deg_per_m{0.5};
 
+  // A keyframe's slice (scan_slice.h): its points between slice_low and slice_high above
+  // base_link (gravity-aligned; 0.9-2.1 m above the floor for a body 0.5 m up: above most
+  // furniture, below ceilings), thinned to one per slice_cell square, at most slice_max_points.
+  // The matcher's scan search (matching/scan_search.h) scores them against the BIM's walls.
+  // Only the newest slice_keyframes keyframes carry theirs (0: none).
+  double slice_low{0.4};
+  double slice_high{1.6};
+  double slice_cell{0.05};
+  int slice_max_points{1500};
+  int slice_keyframes{3};
+
   // Rooms and corridors.
   bool detect_rooms{true};
   double room_max_range{15.0};

@@ -23,6 +23,9 @@ struct Keyframe {
   Eigen::Matrix<double, 6, 6> odom_information{Eigen::Matrix<double, 6, 6>::Identity()};
   int level{0};      // the storey walked (levels.h): 0 until a stair climb reaches another
   double path{0.0};  // m of odometry path walked from the first keyframe to this one
+  // Its scan's points in a horizontal band (FrontendConfig slice_*), in base_link; only the
+  // newest slice_keyframes keyframes carry them (the others: empty).
+  std::vector<Eigen::Vector3f> slice;
 };
 
 struct Plane {

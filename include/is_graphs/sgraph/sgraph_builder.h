@@ -106,6 +106,7 @@ class SGraphBuilder {
   void ClearGraphLocked();
   /// Appends a keyframe at odom_pose with its cloud, associates its segments, finds rooms.
   void AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& odom_pose, PointList cloud,
+                            std::vector<Eigen::Vector3f> slice,
                             const std::vector<PlaneSegment>& segments, ScanResult& result);
   // Track loss (sgraph_builder_track.cpp).
   bool TrackLost(const ScanResult& result) const;
@@ -115,6 +116,7 @@ class SGraphBuilder {
                         ScanResult& result) const;
   /// Drops the graph and starts it again from a keyframe of this scan (result: its warning).
   void RestartLocked(double stamp, const Eigen::Isometry3d& odom_pose, PointList cloud,
+                     std::vector<Eigen::Vector3f> slice,
                      const std::vector<PlaneSegment>& segments, ScanResult& result);
   std::vector<MapPlaneView> MapViewsLocked() const;
   static std::vector<PlaneSegment> InMap(const std::vector<PlaneSegment>& segments,

@@ -24,6 +24,7 @@ GraphMatcher::GraphMatcher(const MatcherConfig& config) : config_(config) {
     MatcherConfig lenient = config;
     lenient.centre_tolerance = config.doubt_centre_tolerance;
     lenient.doubt_centre_tolerance = 0.0;  // the doubter does not doubt itself
+    lenient.scan_proposals = false;        // it makes no proposals
     // It pairs rooms through their walls too: without, M2 went UNIQUE on the cellar (the
     // second floor's hall, paired through its walls, was the competitor it found).
     doubter_ = std::make_unique<GraphMatcher>(lenient);
@@ -36,6 +37,8 @@ std::vector<std::string> GraphMatcher::SetAGraph(const agraph::AGraph& graph) {
   surfaces_ = SurfaceEvidence(graph, config_);
   doorways_ = DoorwayEvidence(graph, config_);
   a_corners_ = FindCorners(FacingSurfaces(graph), config_.proposal_corner_reach);
+  if (config_.scan_proposals) scan_ = ScanSearch(graph, config_.scan_search);
+  scan_view_ = ScanView();
   a_sha256_ = graph.source.sha256;
   a_storeys_ = static_cast<int>(graph.storeys.size());
   storey_elevations_.clear();

@@ -82,11 +82,14 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
   // (the proposals cost 5-100x the rooms' matching; the merger watches a localized motion);
   // and only where few rooms are paired (proposal_cross_check_max_rooms).
   std::optional<ProposalDecision> walls_view;
+  bool scan_searched = false;
   if (decision.status == MatchStatus::kUnique && config_.proposals &&
       config_.proposal_cross_check &&
       hypotheses[decision.best].rooms <= config_.proposal_cross_check_max_rooms &&
       !(last_checked_ &&
         SameMotion(*last_checked_, hypotheses[decision.best].pose, s_points, config_))) {
+    SearchScans(graph);
+    scan_searched = true;
     walls_view = Propose(graph, evidence, hypotheses, /*hypotheses_if_too_many=*/true);
     if (WallsPreferAnother(*walls_view, hypotheses[decision.best])) {
       decision.status = MatchStatus::kAmbiguous;
@@ -99,11 +102,16 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
   }
   // 6. Without a UNIQUE answer from the rooms: the proposals, on every wall plane seen.
   if (decision.status != MatchStatus::kUnique && config_.proposals) {
+    if (!walls_view) {
+      SearchScans(graph);
+      scan_searched = true;
+    }
     ProposalDecision proposed = walls_view ? *walls_view : Propose(graph, evidence, hypotheses);
     if (walls_view) proposed.status = MatchStatus::kAmbiguous;  // the rooms say otherwise
     stats_.proposals = proposed.candidates;
     if (proposed.status == MatchStatus::kUnique) {
       FillFromProposal(proposed, hypotheses, s_rooms, evidence, &out);
+      FillScanSearch(&out);
       out.competing_storeys = CompetingStoreys(out);
       GateOnWallsSeen(evidence.walls, &out);
       stats_.milliseconds =
@@ -149,11 +157,19 @@ GraphMatch GraphMatcher::MatchLevel(const sgraph::SGraph& graph) {
       ++out.hypotheses;
     }
   }
+  if (scan_searched) FillScanSearch(&out);
   out.competing_storeys = CompetingStoreys(out);
   GateOnWallsSeen(evidence.walls, &out);
   stats_.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+void GraphMatcher::FillScanSearch(GraphMatch* out) const {
+  if (!config_.scan_proposals) return;
+  out->scan_set = scan_view_.certified ? static_cast<int>(scan_view_.set.size()) : -1;
+  out->scan_margin = scan_view_.margin;
+  out->scan_search = scan_view_.summary;
 }
 
 std::optional<Hypothesis> GraphMatcher::Doubt(const std::vector<RoomDescriptor>& s_rooms,

@@ -61,6 +61,10 @@ GraphMatcher::ProposalDecision GraphMatcher::Propose(const sgraph::SGraph& graph
                   proposals.end());
   for (const auto& h : hypotheses)
     if (!h.members.empty()) proposals.push_back({h.pose, h.storey, 0});
+  // The poses the scans cannot tell apart (SearchScans, run by the caller).
+  if (scan_view_.certified)
+    for (const ScanPoseOn& p : scan_view_.set)
+      if (InGate(p.pose, p.storey)) proposals.push_back({p.pose, p.storey, 0});
   // What is seen fits too many places to weigh them all: undecided (or, to check the room
   // hypotheses against the walls, only their motions weighed).
   if (too_many && (!hypotheses_if_too_many || proposals.empty())) {
@@ -119,8 +123,20 @@ GraphMatcher::ProposalDecision GraphMatcher::Propose(const sgraph::SGraph& graph
     if (h.evidence >= out.best.evidence + config_.proposal_margin &&
         !(h.storey == out.best.storey && SameMotion(out.best.pose, h.pose, points, config_)))
       out.more_walls.push_back(h);
+  // Motions the scans put more than their margin below the best are out (they cannot be the
+  // truth unless the scans' best is wrong too, and then the best below is not in their set).
+  bool scans_agree = true;
+  if (scan_view_.certified) {
+    auto outside = [&](const Hypothesis& h) { return !InScanSet(h, points); };
+    out.competitors.erase(
+        std::remove_if(out.competitors.begin(), out.competitors.end(), outside),
+        out.competitors.end());
+    out.more_walls.erase(std::remove_if(out.more_walls.begin(), out.more_walls.end(), outside),
+                         out.more_walls.end());
+    scans_agree = !outside(out.best);
+  }
   const bool enough = out.best.evidence >= config_.proposal_min_share * seen;
-  if (enough && out.best.crossings == 0 && out.competitors.empty() && !too_many)
+  if (enough && out.best.crossings == 0 && out.competitors.empty() && !too_many && scans_agree)
     out.status = MatchStatus::kUnique;
   return out;
 }

@@ -78,7 +78,7 @@ std::string MatcherConfig::Validate() const {
     const std::string error = Check(f.name, f.value, f.lo, f.hi, f.lo_open);
     if (!error.empty()) return error;
   }
-  return "";
+  return scan_search.Validate();
 }
 
 }  // namespace matching

@@ -110,6 +110,7 @@ void LocalizationPipeline::MatchAndMerge(double stamp, const sgraph::SGraph& gra
   e.message = std::to_string(match.room_pairs.size()) + " room pairs, " +
               std::to_string(match.hypotheses) + " hypotheses, score " +
               std::to_string(match.score);
+  if (!match.scan_search.empty()) e.message += "; scan search: " + match.scan_search;
   if (!match.competing_storeys.empty()) {
     e.message += ", also fits storey";
     for (int s : match.competing_storeys) e.message += " " + std::to_string(s);

@@ -86,6 +86,10 @@ std::string FrontendConfig::Validate() const {
   c.NonNegative("consistency_min_keyframes", consistency_min_keyframes);
   c.Positive("consistency_angle_deg", consistency_angle_deg);
   c.NonNegative("consistency_angle_deg_per_m", consistency_angle_deg_per_m);
+  c.Less("slice_low", slice_low, "slice_high", slice_high);
+  c.Range("slice_cell", slice_cell, 0.005, 1.0);
+  c.Range("slice_max_points", slice_max_points, 1, 1e6);
+  c.Range("slice_keyframes", slice_keyframes, 0, 1000);
   c.Positive("room_max_range", room_max_range);
   c.Positive("room_min_width", room_min_width);
   c.Less("room_min_width", room_min_width, "room_max_width", room_max_width);

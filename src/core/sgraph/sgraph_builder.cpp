@@ -1,4 +1,5 @@
 #include "is_graphs/sgraph/sgraph_builder.h"
+#include "is_graphs/sgraph/scan_slice.h"
 
 #include <algorithm>
 #include <chrono>
@@ -176,6 +177,7 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
       ExtractPlanes(filtered, up, base_T_sensor.translation(), frontend_);
   result.extraction_ms = ms_since(t0);
   PointList map_points = VoxelFilter(filtered, frontend_.map_voxel_size);
+  std::vector<Eigen::Vector3f> slice = ScanSlice(ranged, up, frontend_);
 
   std::lock_guard<std::mutex> lock(mutex_);
   if (last_scan_stamp_ != scan.stamp) {  // reset meanwhile
@@ -189,7 +191,8 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
       return result;
     }
     selector_.Accept(odom_pose);
-    RestartLocked(scan.stamp, odom_pose, std::move(map_points), segments, result);
+    RestartLocked(scan.stamp, odom_pose, std::move(map_points), std::move(slice), segments,
+                  result);
     return result;
   }
   selector_.Accept(odom_pose);
@@ -197,14 +200,19 @@ SGraphBuilder::ScanResult SGraphBuilder::AddScan(const Scan& scan,
                                                                  frontend_.track_loss_min_keyframes;
   PointList cloud_copy;
   if (can_lose_track) cloud_copy = map_points;
-  AppendKeyframeLocked(scan.stamp, odom_pose, std::move(map_points), segments, result);
+  std::vector<Eigen::Vector3f> slice_copy;
+  if (can_lose_track) slice_copy = slice;
+  AppendKeyframeLocked(scan.stamp, odom_pose, std::move(map_points), std::move(slice), segments,
+                       result);
   if (can_lose_track && TrackLost(result))
-    RestartLocked(scan.stamp, odom_pose, std::move(cloud_copy), segments, result);
+    RestartLocked(scan.stamp, odom_pose, std::move(cloud_copy), std::move(slice_copy), segments,
+                  result);
   return result;
 }
 
 void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& odom_pose,
-                                         PointList cloud, const std::vector<PlaneSegment>& segments,
+                                         PointList cloud, std::vector<Eigen::Vector3f> slice,
+                                         const std::vector<PlaneSegment>& segments,
                                          ScanResult& result) {
   using Clock = std::chrono::steady_clock;
   const auto ms_since = [](Clock::time_point t0) {
@@ -227,16 +235,21 @@ void SGraphBuilder::AppendKeyframeLocked(double stamp, const Eigen::Isometry3d& 
     kf.path = prev.path + kf.relative_odom.translation().norm();
   }
   kf.level = levels_.Add(Eigen::Vector3d(kf.pose.translation()));
-  keyframes_.push_back(kf);
+  // Only the newest slice_keyframes keep their slice (bounded memory and message size).
+  if (frontend_.slice_keyframes > 0) kf.slice = std::move(slice);
+  const size_t older = static_cast<size_t>(std::max(0, frontend_.slice_keyframes - 1));
+  for (size_t i = 0; i + older < keyframes_.size(); ++i) keyframes_[i].slice.clear();
+  const int id = kf.id;
+  keyframes_.push_back(std::move(kf));
   clouds_.push_back(std::move(cloud));
   ThinOldCloudsLocked();
   result.status = ScanStatus::kKeyframe;
-  result.keyframe = kf.id;
+  result.keyframe = id;
   auto t0 = Clock::now();
-  AddPlaneObservations(kf.id, segments, result);
+  AddPlaneObservations(id, segments, result);
   result.association_ms = ms_since(t0);
   t0 = Clock::now();
-  if (frontend_.detect_rooms) UpdateRooms(kf.id);
+  if (frontend_.detect_rooms) UpdateRooms(id);
   result.rooms_ms = ms_since(t0);
 }
 

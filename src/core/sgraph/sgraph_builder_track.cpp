@@ -66,6 +66,7 @@ void SGraphBuilder::CountWallsLocked(const Eigen::Isometry3d& pose,
 }
 
 void SGraphBuilder::RestartLocked(double stamp, const Eigen::Isometry3d& odom_pose, PointList cloud,
+                                  std::vector<Eigen::Vector3f> slice,
                                   const std::vector<PlaneSegment>& segments, ScanResult& result) {
   std::ostringstream w;
   w << "track lost: " << result.num_new_walls << " of the " << result.num_walls
@@ -77,7 +78,7 @@ void SGraphBuilder::RestartLocked(double stamp, const Eigen::Isometry3d& odom_po
   fresh.restarted = true;
   fresh.warning = result.warning.empty() ? w.str() : result.warning + "; " + w.str();
   ClearGraphLocked();
-  AppendKeyframeLocked(stamp, odom_pose, std::move(cloud), segments, fresh);
+  AppendKeyframeLocked(stamp, odom_pose, std::move(cloud), std::move(slice), segments, fresh);
   result = fresh;
 }
 

@@ -7,7 +7,10 @@
 // The S-Graphs carry the walk through their rooms (keyframes), the doorways found on it and the
 // keyframes that observed each plane, as the harsh campaign's do: every kind of evidence.
 //
+// Then the scan search's cost (BenchScanSearch; --scan-only: that table alone).
+//
 //   bench_matching [--reps N] [--no-doubt] [--no-proposals] [--rooms-only] [--cell A S]
+//                  [--scan-only]
 //   (--no-doubt: doubt_centre_tolerance 0, no re-check; --no-proposals: no corner proposals;
 //    --rooms-only: S-Graphs of rooms and planes alone, no walk, doorways or observations;
 //    --cell A S: only the cell of A A-Graph rooms and S S-Graph rooms)
@@ -21,6 +24,9 @@
 #include <vector>
 
 #include "is_graphs/matching/graph_matcher.h"
+#include "is_graphs/matching/pose_hint.h"
+#include "is_graphs/matching/scan_search.h"
+#include "is_graphs/matching/synthetic_first_view.h"
 #include "is_graphs/matching/synthetic_sgraph.h"
 
 namespace is_graphs {
@@ -93,6 +99,53 @@ double Percentile(std::vector<double> v, double p) {
   return v.empty() ? 0.0 : v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
 }
 
+/// The scan search (scan_search.h) on one keyframe's slice from `reps` random rooms of grid
+/// storeys of 10, 60 and 200 rooms at the default 0.05 m: grid build time, search time, the
+/// set's size and whether the truth is in it.
+void BenchScanSearch(int reps) {
+  std::printf(
+      "\n| A-Graph rooms | grid build ms | search median ms | search max ms | nodes median | "
+      "set size median | truth in set |\n|---|---|---|---|---|---|---|\n");
+  const struct { int cols, rows; } buildings[] = {{5, 2}, {10, 6}, {20, 10}};
+  for (const auto& b : buildings) {
+    const agraph::AGraph g = GridBuilding(b.cols, b.rows, 1000 + b.cols);
+    const auto t0 = std::chrono::steady_clock::now();
+    const matching::ScanSearch search(g, matching::ScanSearchConfig{});
+    const double build =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::vector<double> ms, nodes, sizes;
+    int truth_in = 0, runs = 0;
+    std::mt19937_64 rng(4900 + b.cols);
+    for (int r = 0; r < reps; ++r) {
+      matching::FirstViewConfig c;
+      c.room = std::uniform_int_distribution<int>(0, static_cast<int>(g.rooms.size()) - 1)(rng);
+      c.bim_T_map = matching::RandomPlanarMotion(rng, 100.0);
+      c.seed = rng();
+      const matching::SyntheticSGraph view = matching::MakeFirstView(g, c);
+      if (view.graph.keyframes.empty()) continue;
+      std::vector<Eigen::Vector2d> points;
+      const auto& k = view.graph.keyframes.front();
+      for (const auto& p : k.slice) points.push_back((k.pose * p.cast<double>()).head<2>());
+      const matching::ScanSearchResult res = search.Search(points, 0);
+      ++runs;
+      ms.push_back(res.milliseconds);
+      nodes.push_back(static_cast<double>(res.nodes));
+      sizes.push_back(static_cast<double>(res.set.size()));
+      const matching::Pose2 truth = matching::PlanarPose(view.bim_T_map);
+      for (const auto& p : res.set)
+        if ((p.bim_T_map.Apply(points.front()) - truth.Apply(points.front())).norm() < 0.15 &&
+            std::abs(std::remainder(p.bim_T_map.yaw - truth.yaw, 2.0 * M_PI)) < 0.035) {
+          ++truth_in;
+          break;
+        }
+    }
+    std::printf("| %zu | %.0f | %.1f | %.1f | %.0f | %.0f | %d/%d |\n", g.rooms.size(), build,
+                Percentile(ms, 0.5), Percentile(ms, 1.0), Percentile(nodes, 0.5),
+                Percentile(sizes, 0.5), truth_in, runs);
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 }  // namespace is_graphs
 
@@ -101,6 +154,7 @@ int main(int argc, char** argv) {
   int reps = 30;
   bool walk = true;
   int only_a = 0, only_s = 0;  // --cell A S: that cell alone (for profiling)
+  bool scan_only = false;
   matching::MatcherConfig config;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--reps") == 0 && i + 1 < argc)
@@ -111,13 +165,19 @@ int main(int argc, char** argv) {
       config.proposals = false;
     else if (std::strcmp(argv[i], "--rooms-only") == 0)
       walk = false;
+    else if (std::strcmp(argv[i], "--scan-only") == 0)
+      scan_only = true;
     else if (std::strcmp(argv[i], "--cell") == 0 && i + 2 < argc)
       only_a = std::atoi(argv[i + 1]), only_s = std::atoi(argv[i + 2]), i += 2;
     else
       return std::fprintf(stderr,
                           "usage: bench_matching [--reps N] [--no-doubt] [--no-proposals] "
-                          "[--rooms-only] [--cell A S]\n"),
+                          "[--rooms-only] [--cell A S] [--scan-only]\n"),
              2;
+  }
+  if (scan_only) {
+    BenchScanSearch(reps);
+    return 0;
   }
   const struct { int cols, rows; } buildings[] = {{5, 2}, {10, 6}, {20, 10}};
   std::printf(
@@ -168,5 +228,6 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
   }
+  if (only_a == 0) BenchScanSearch(reps);
   return 0;
 }

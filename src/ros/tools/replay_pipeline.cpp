@@ -14,6 +14,7 @@
 //                                            each odometry reading, as sgraph_node's tf gives,
 //                                            PREFIX.json)
 //                   [--explain]  (the S-rooms against the BIM under the true motion)
+//                   [--scan-search]  (the matcher's scan search on: scan_proposals)
 //                   [--cloud-layout auto|velodyne|ouster|hesai|robosense|xyzi]  (as
 //                                 sgraph_node's cloud_layout; default auto)
 //                   [--hint T,X,Y,YAW_DEG,SIGMA_XY,SIGMA_YAW_DEG]  (a pose hint, as rviz's
@@ -52,9 +53,10 @@ using bag_replay::Percentile;
 using bag_replay::WriteTum;
 
 int Usage() {
-  std::cerr << "usage: replay_pipeline BAG --building FILE [--storey S] [--duration S] "
-               "[--out-prefix PREFIX] [--explain] [--cloud-layout L] [--deviations FILE] "
-               "[--hint T,X,Y,YAW_DEG,SIGMA_XY,SIGMA_YAW_DEG]\n";
+  std::cerr
+      << "usage: replay_pipeline BAG --building FILE [--storey S] [--duration S] "
+         "[--out-prefix PREFIX] [--explain] [--scan-search] [--cloud-layout L] [--deviations FILE] "
+         "[--hint T,X,Y,YAW_DEG,SIGMA_XY,SIGMA_YAW_DEG]\n";
   return 2;
 }
 
@@ -94,7 +96,7 @@ int main(int argc, char** argv) {
   if (argc < 2) return Usage();
   std::string bag_path = argv[1], building_path, storey, prefix, deviations_path;
   double max_duration = -1.0;
-  bool explain = false;
+  bool explain = false, scan_search = false;
   std::optional<double> hint_at;  // s after the first message
   matching::PoseHint hint;
   ros_conversions::LidarCloudConfig cloud_config;
@@ -102,6 +104,10 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--explain") {
       explain = true;
+      continue;
+    }
+    if (a == "--scan-search") {  // the matcher's scan_proposals on (experimental)
+      scan_search = true;
       continue;
     }
     if (i + 1 >= argc) return Usage();
@@ -133,6 +139,7 @@ int main(int argc, char** argv) {
   }
   if (building_path.empty()) return Usage();
   pipeline::PipelineConfig config;
+  config.matcher.scan_proposals = scan_search;
   if (const auto e = config.Validate(); !e.empty()) {
     std::cerr << "replay_pipeline: " << e << "\n";
     return 2;
