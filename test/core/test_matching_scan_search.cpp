@@ -1,186 +1,285 @@
-// The certified scan search (scan_search.h) on the project's office: the truth in the set, the
-// set's certificate (no pose outside it scores within the margin of the best), twins kept
-// together, and every way it declines to answer.
+// The certified scan-to-BIM search (ScanSearch): a simulated slice found at its true pose from
+// any B_x_M, both poses of a building of two identical units kept, the branch-and-bound's bound
+// a true upper bound and its best the brute force's, the statuses with their numbers, and the
+// certificate (every pose outside the set scores below best - margin).
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <iostream>
+#include <cstdio>
 #include <random>
 
-#include "is_graphs/geometry/se3.h"
-#include "is_graphs/matching/matcher_config.h"
-#include "is_graphs/matching/pose_hint.h"
+#include "is_graphs/matching/scan_grid.h"
 #include "is_graphs/matching/scan_search.h"
-#include "is_graphs/matching/synthetic_first_view.h"
+#include "is_graphs/matching/synthetic_slice.h"
 #include "matching_test_helpers.h"
 
 namespace is_graphs {
 namespace matching {
 namespace {
 
-const agraph::AGraph* Office() {
-  std::string why;
-  return testing::LoadBuildingOnce(testing::ProjectBim("office.ifc"), &why);
+using Polygon = std::vector<Eigen::Vector2d>;
+
+/// A storey (id `storey`, at `elevation`) of the given closed polygons' edges as wall-surfaces
+/// from z_min to z_max (absolute).
+void AddPolygons(agraph::AGraph* g, int storey, const std::vector<Polygon>& polygons,
+                 double z_min = 0.0, double z_max = 2.8) {
+  for (const Polygon& poly : polygons)
+    for (size_t k = 0; k < poly.size(); ++k) {
+      const Eigen::Vector2d a = poly[k], b = poly[(k + 1) % poly.size()];
+      const Eigen::Vector2d n = Eigen::Vector2d(-(b - a).y(), (b - a).x()).normalized();
+      const int id = static_cast<int>(g->surfaces.size());
+      g->surfaces.push_back(testing::MakeSurface(id, id, storey, a, b, n));
+      g->surfaces.back().z_min = z_min, g->surfaces.back().z_max = z_max;
+    }
 }
 
-/// The slice of `view`'s keyframe in M.
-std::vector<Eigen::Vector2d> SliceInMap(const SyntheticSGraph& view) {
-  std::vector<Eigen::Vector2d> out;
-  for (const auto& k : view.graph.keyframes)
-    for (const auto& p : k.slice) out.push_back((k.pose * p.cast<double>()).head<2>());
-  return out;
+agraph::AGraph Building(const std::vector<Polygon>& polygons) {
+  agraph::AGraph g;
+  g.storeys.push_back({});
+  AddPolygons(&g, 0, polygons);
+  return g;
 }
 
-Pose2 Truth(const SyntheticSGraph& view) { return PlanarPose(view.bim_T_map); }
+// An L-shaped room with a pillar: no turn of it fits itself.
+Polygon LRoom(const Pose2& place = {}) {
+  Polygon p{{0, 0}, {9, 0}, {9, 3.5}, {4, 3.5}, {4, 6}, {0, 6}};
+  for (auto& v : p) v = place.Apply(v);
+  return p;
+}
+Polygon Pillar() { return {{6.5, 1.2}, {7.1, 1.2}, {7.1, 1.8}, {6.5, 1.8}}; }
 
-bool Near(const Pose2& a, const Pose2& b, const std::vector<Eigen::Vector2d>& points, double m) {
-  if (std::abs(std::remainder(a.yaw - b.yaw, 2.0 * M_PI)) > 2.0 * M_PI / 180.0) return false;
-  for (const auto& p : points)
-    if ((a.Apply(p) - b.Apply(p)).norm() > m) return false;
-  return true;
+const Pose2 kTruth{137.0 * M_PI / 180.0, {25.0, -13.0}};
+const Pose2 kRobot{0.3, {2.0, 2.0}};
+
+std::vector<Eigen::Vector2d> Slice(const agraph::AGraph& g, const Pose2& truth = kTruth,
+                                   std::uint64_t seed = 5) {
+  return SimulatedSlice(g, 0, kRobot, truth, 720, 20.0, 0.02, seed);
 }
 
-/// A view from the office's room `name` under a fixed motion, noise 0.02 m.
-SyntheticSGraph OfficeView(const agraph::AGraph& g, const std::string& name, std::uint64_t seed) {
-  FirstViewConfig c;
-  c.room = testing::RoomByName(g, name);
-  c.bim_T_map = Eigen::Translation3d(-31.0, 12.5, 0.0) *
-                Eigen::AngleAxisd(137.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ());
-  c.seed = seed;
-  return MakeFirstView(g, c);
+Eigen::Vector2d Centroid(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (const auto& p : points) c += p;
+  return c / static_cast<double>(points.size());
 }
 
-TEST(ScanSearch, TheTruthIsInTheSetAndTheSetIsCertified) {
-  const agraph::AGraph* g = Office();
-  if (!g) GTEST_SKIP() << "office.ifc could not be loaded";
-  const ScanSearch search(*g, ScanSearchConfig{});
-  const SyntheticSGraph view = OfficeView(*g, "101", 3);
-  ASSERT_FALSE(view.graph.keyframes.empty());
-  const auto points = SliceInMap(view);
-  const int storey = g->rooms[testing::RoomByName(*g, "101")].storey;
-  const ScanSearchResult r = search.Search(points, storey);
+// Whether `pose` is `truth` within `xy` m at the points' centroid and `yaw` rad.
+bool Near(const Pose2& pose, const Pose2& truth, const Eigen::Vector2d& c, double xy, double yaw) {
+  return (pose.Apply(c) - truth.Apply(c)).norm() <= xy && AngleDistance(pose.yaw, truth.yaw) <= yaw;
+}
+
+TEST(ScanSearch, FindsTheTruthInAnAsymmetricBuilding) {
+  const agraph::AGraph g = Building({LRoom(), Pillar()});
+  const ScanSearch search(g, {});
+  ASSERT_TRUE(search.HasWalls(0));
+  const auto points = Slice(g);
+  const auto r = search.Search(points, 0);
   ASSERT_EQ(r.status, ScanSearchResult::Status::kOk) << r.reason;
-  ASSERT_FALSE(r.set.empty());
-  std::cout << "[ scan search ] office 101: " << r.set.size() << " poses, best " << r.best << ", "
-            << r.nodes << " nodes, " << r.milliseconds << " ms" << std::endl;
-  const std::vector<Eigen::Vector2d> probe = {points.front(), points[points.size() / 2]};
-  bool truth_in = false;
-  for (const ScanPose& p : r.set) {
-    truth_in = truth_in || Near(p.bim_T_map, Truth(view), probe, 0.15);
-    EXPECT_GE(p.score, r.best - r.margin - 1e-9);
+  std::printf("[ ScanSearch ] best %.3f, %zu poses, %ld nodes, %.1f ms\n", r.best, r.set.size(),
+              r.nodes, r.milliseconds);
+  ASSERT_EQ(r.set.size(), 1u);
+  const double step = search.Problem(points, 0)->yaw_step();
+  EXPECT_TRUE(Near(r.set[0].bim_T_map, kTruth, Centroid(points), 2 * search.config().resolution,
+                   step + 1e-9))
+      << "yaw " << r.set[0].bim_T_map.yaw << " t " << r.set[0].bim_T_map.t.transpose();
+  EXPECT_DOUBLE_EQ(r.best, r.set[0].score);
+  EXPECT_GT(r.best, 0.8);
+  EXPECT_DOUBLE_EQ(r.margin, search.config().margin);
+  EXPECT_GT(r.nodes, 0);
+}
+
+TEST(ScanSearch, KeepsBothPosesOfTwoIdenticalUnits) {
+  // Unit B is unit A turned half round about (10.5, 3): x' = 21 - x, y' = 6 - y.
+  const Pose2 half{M_PI, {21.0, 6.0}};
+  const agraph::AGraph g = Building({LRoom(), LRoom(half)});
+  const ScanSearch search(g, {});
+  const auto points = Slice(g);
+  const auto r = search.Search(points, 0);
+  ASSERT_EQ(r.status, ScanSearchResult::Status::kOk) << r.reason;
+  ASSERT_EQ(r.set.size(), 2u);
+  const Pose2 other{kTruth.yaw + M_PI, half.Apply(kTruth.t)};
+  const Eigen::Vector2d c = Centroid(points);
+  const double deg = M_PI / 180.0;
+  for (const Pose2& truth : {kTruth, other}) {
+    int found = 0;
+    for (const ScanPose& p : r.set) found += Near(p.bim_T_map, truth, c, 0.1, deg);
+    EXPECT_EQ(found, 1) << "truth yaw " << truth.yaw << " t " << truth.t.transpose();
   }
-  EXPECT_TRUE(truth_in) << "the truth is not in the set";
-  EXPECT_GE(search.Score(points, Truth(view), storey), r.best - r.margin);
-  // The certificate: poses far from every pose of the set score below best - margin (a
-  // continuous pose's cells round differently from the search's lattice: 0.01 of slack).
-  const std::uint64_t seed = testing::CampaignSeed(7);
-  std::cout << "[ scan search ] certificate probes, seed " << seed << std::endl;
+  EXPECT_NEAR(r.set[0].score, r.set[1].score, r.margin);
+}
+
+TEST(ScanSearch, TheBoundIsAnUpperBoundAndTheBestIsTheBruteForceBest) {
+  ScanSearchConfig config;
+  config.resolution = 0.2;
+  config.sigma = 0.2;
+  config.window_margin = 1.0;
+  const agraph::AGraph g = Building({LRoom(), Pillar()});
+  const ScanSearch search(g, config);
+  const auto points = Slice(g);
+  const auto problem = search.Problem(points, 0);
+  ASSERT_TRUE(problem);
+  const ScanProblem& p = *problem;
+  Eigen::Vector2i first, last;
+  ASSERT_TRUE(search.TranslationCells(0, &first, &last));
+
+  // Brute force over every leaf of the search's discretization.
+  double brute = -1.0;
+  for (int yaw = 0; yaw < p.yaw_steps(); ++yaw)
+    for (int y = first.y(); y <= last.y(); ++y)
+      for (int x = first.x(); x <= last.x(); ++x) brute = std::max(brute, p.Bound({x, y, yaw, 0}));
+  const auto r = search.Search(points, 0);
+  ASSERT_EQ(r.status, ScanSearchResult::Status::kOk) << r.reason;
+  EXPECT_DOUBLE_EQ(r.best, brute);
+
+  // Random nodes, half of them over the truth: the bound is at least every leaf's exact score.
+  const std::uint64_t seed = testing::CampaignSeed(2024);
+  std::printf("[ ScanSearch ] bound check seed %llu\n", static_cast<unsigned long long>(seed));
+  SCOPED_TRACE("seed " + std::to_string(seed));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int probes = 0;
-  for (int k = 0; k < 3000; ++k) {
-    Pose2 p = Truth(view);
-    p.yaw += 2.0 * M_PI * unit(rng);
-    p.t += Eigen::Vector2d(60.0 * unit(rng) - 30.0, 60.0 * unit(rng) - 30.0);
-    bool near_set = false;
-    for (const ScanPose& s : r.set) near_set = near_set || Near(s.bim_T_map, p, probe, 1.0);
-    if (near_set) continue;
-    ++probes;
-    EXPECT_LT(search.Score(points, p, storey), r.best - r.margin + 0.01)
-        << "a pose outside the set scores within the margin";
+  const Eigen::Vector2d truth_cell = (kTruth.Apply(Centroid(points)) / config.resolution);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int level = 1 + static_cast<int>(rng() % std::min(4, p.max_level()));
+    const int size = 1 << level, yaws = 1 << p.yaw_level(level);
+    ScanProblem::Node node;
+    node.level = level;
+    if (trial % 2 == 0) {
+      node.x = static_cast<int>(std::floor(truth_cell.x())) - static_cast<int>(rng() % size);
+      node.y = static_cast<int>(std::floor(truth_cell.y())) - static_cast<int>(rng() % size);
+      const int yaw = static_cast<int>(std::lround(kTruth.yaw / p.yaw_step())) % p.yaw_steps();
+      node.yaw = yaw / yaws * yaws;
+    } else {
+      node.x = first.x() + static_cast<int>(rng() % (last.x() - first.x() + 1));
+      node.y = first.y() + static_cast<int>(rng() % (last.y() - first.y() + 1));
+      node.yaw = static_cast<int>(rng() % p.yaw_steps()) / yaws * yaws;
+    }
+    const double bound = p.Bound(node);
+    double best_leaf = 0.0;
+    for (int yaw = node.yaw; yaw < std::min(node.yaw + yaws, p.yaw_steps()); ++yaw)
+      for (int y = node.y; y < node.y + size; ++y)
+        for (int x = node.x; x < node.x + size; ++x) {
+          const double exact = search.Score(points, p.LeafPose(x, y, yaw), 0);
+          best_leaf = std::max(best_leaf, exact);
+          if (x == node.x && y == node.y) {
+            EXPECT_NEAR(exact, p.Bound({x, y, yaw, 0}), 1e-12);
+          }
+        }
+    // Cut short against a threshold, still an upper bound.
+    EXPECT_GE(p.Bound(node, 0.9), best_leaf) << "trial " << trial;
+    EXPECT_GE(bound, best_leaf) << "trial " << trial << " node " << node.x << " " << node.y
+                                << " yaw " << node.yaw << " level " << level;
   }
-  EXPECT_GT(probes, 2000);
 }
 
-TEST(ScanSearch, KeepsBothTwinsOfABuildingRepeatedUnderAHalfTurn) {
-  const agraph::AGraph* office = Office();
-  if (!office) GTEST_SKIP() << "office.ifc could not be loaded";
-  // The office and its copy turned by 180 deg about (50, 0): two units the scans cannot tell.
-  agraph::AGraph g = *office;
-  const Eigen::Rotation2Dd half(M_PI);
-  const Eigen::Vector2d pivot(50.0, 0.0);
-  const size_t n = g.surfaces.size();
-  for (size_t i = 0; i < n; ++i) {
-    agraph::WallSurface s = g.surfaces[i];
-    s.id = static_cast<int>(g.surfaces.size());
-    s.start = pivot + half * (s.start - pivot);
-    s.end = pivot + half * (s.end - pivot);
-    g.surfaces.push_back(s);
-  }
-  const ScanSearch search(g, ScanSearchConfig{});
-  const SyntheticSGraph view = OfficeView(*office, "101", 3);  // seen in the original unit
-  const auto points = SliceInMap(view);
-  const int storey = office->rooms[testing::RoomByName(*office, "101")].storey;
-  const ScanSearchResult r = search.Search(points, storey);
+TEST(ScanSearch, StatusesSayWhyWithTheirNumbers) {
+  // Storey 1 at 3 m: its walls end at 3.5 m, below the band's 3.9 m.
+  agraph::AGraph g = Building({LRoom(), Pillar()});
+  g.storeys.push_back({});
+  g.storeys.back().id = 1, g.storeys.back().elevation = 3.0;
+  AddPolygons(&g, 1, {LRoom()}, 3.0, 3.5);
+  ScanSearchConfig config;
+  const ScanSearch search(g, config);
+  EXPECT_FALSE(search.HasWalls(1));
+  const auto points = Slice(g);
+  auto r = search.Search(points, 1);
+  EXPECT_EQ(r.status, ScanSearchResult::Status::kNoWalls);
+  EXPECT_NE(r.reason.find("storey 1"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("3.9"), std::string::npos) << r.reason;
+  EXPECT_TRUE(r.set.empty());
+  EXPECT_EQ(search.Search(points, 7).status, ScanSearchResult::Status::kNoWalls);
+
+  const std::vector<Eigen::Vector2d> few(points.begin(), points.begin() + 30);
+  r = search.Search(few, 0);
+  EXPECT_EQ(r.status, ScanSearchResult::Status::kTooFewPoints);
+  EXPECT_NE(r.reason.find("min_points 60"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("30 given"), std::string::npos) << r.reason;
+
+  // Eight identical 4 m x 3 m rooms in a row: each fits twice (turned half round too).
+  std::vector<Polygon> rooms;
+  for (int i = 0; i < 8; ++i)
+    rooms.push_back({{4.15 * i, 0}, {4.15 * i + 4, 0}, {4.15 * i + 4, 3}, {4.15 * i, 3}});
+  const agraph::AGraph row = Building(rooms);
+  config.max_set = 4;
+  const ScanSearch in_row(row, config);
+  const Pose2 robot{0.2, {4.15 * 3 + 1.3, 1.1}};
+  r = in_row.Search(SimulatedSlice(row, 0, robot, kTruth, 720, 20.0, 0.02, 9), 0);
+  EXPECT_EQ(r.status, ScanSearchResult::Status::kTooMany);
+  EXPECT_NE(r.reason.find("16 distinct poses"), std::string::npos) << r.reason;
+  EXPECT_NE(r.reason.find("max_set 4"), std::string::npos) << r.reason;
+  EXPECT_TRUE(r.set.empty());
+  // A margin so wide that most of the storey is within it: the search gives up, it never guesses.
+  config.margin = 0.9;
+  r = ScanSearch(g, config).Search(points, 0);
+  EXPECT_EQ(r.status, ScanSearchResult::Status::kTooMany);
+  EXPECT_NE(r.reason.find("gave up after"), std::string::npos) << r.reason;
+  config.margin = ScanSearchConfig{}.margin;
+  config.max_set = 32;
+  r = ScanSearch(row, config).Search(SimulatedSlice(row, 0, robot, kTruth, 720, 20.0, 0.02, 9), 0);
   ASSERT_EQ(r.status, ScanSearchResult::Status::kOk) << r.reason;
-  Pose2 twin = Truth(view);
-  twin.yaw += M_PI;
-  twin.t = pivot + half * (twin.t - pivot);
-  const std::vector<Eigen::Vector2d> probe = {points.front(), points[points.size() / 2]};
-  bool truth_in = false, twin_in = false;
-  for (const ScanPose& p : r.set) {
-    truth_in = truth_in || Near(p.bim_T_map, Truth(view), probe, 0.15);
-    twin_in = twin_in || Near(p.bim_T_map, twin, probe, 0.15);
-  }
-  EXPECT_TRUE(truth_in);
-  EXPECT_TRUE(twin_in) << "the twin unit's pose is missing from the set";
-  // A set bound of one: too many to decide on, never a guess.
-  ScanSearchConfig one;
-  one.max_set = 1;
-  const ScanSearchResult t = ScanSearch(g, one).Search(points, storey);
-  EXPECT_EQ(t.status, ScanSearchResult::Status::kTooMany);
-  EXPECT_TRUE(t.set.empty());
-  EXPECT_NE(t.reason.find("more than 1"), std::string::npos) << t.reason;
+  EXPECT_EQ(r.set.size(), 16u);
 }
 
-TEST(ScanSearch, DeclinesWithAReason) {
-  const agraph::AGraph* office = Office();
-  if (!office) GTEST_SKIP() << "office.ifc could not be loaded";
-  const int storey = office->rooms.front().storey;
-  // Walls lower than the slice: no wall in the grid.
-  agraph::AGraph low = *office;
-  for (auto& s : low.surfaces) s.z_max = s.z_min + 0.5;
-  const ScanSearchResult none = ScanSearch(low, ScanSearchConfig{}).Search({{0.0, 0.0}}, storey);
-  EXPECT_EQ(none.status, ScanSearchResult::Status::kNoWalls);
-  EXPECT_NE(none.reason.find("no wall-surface"), std::string::npos) << none.reason;
-  // Too few points.
-  const ScanSearch search(*office, ScanSearchConfig{});
-  const ScanSearchResult few = search.Search({{0.0, 0.0}, {1.0, 0.0}, {2.0, 0.0}}, storey);
-  EXPECT_EQ(few.status, ScanSearchResult::Status::kTooFewPoints);
-  EXPECT_NE(few.reason.find("3 distinct"), std::string::npos) << few.reason;
-  EXPECT_FALSE(search.HasWalls(99));
-  EXPECT_EQ(search.Search({{0.0, 0.0}}, 99).status, ScanSearchResult::Status::kNoWalls);
-  // Bad configuration values are named.
-  EXPECT_TRUE(ScanSearchConfig{}.Validate().empty());
-  ScanSearchConfig bad;
-  bad.margin = 0.0;
-  EXPECT_NE(bad.Validate().find("scan_search_margin"), std::string::npos) << bad.Validate();
-  bad = ScanSearchConfig{};
-  bad.resolution = 0.0;
-  EXPECT_NE(bad.Validate().find("scan_search_resolution"), std::string::npos);
-  bad = ScanSearchConfig{};
-  bad.band_high = bad.band_low;
-  EXPECT_NE(bad.Validate().find("scan_search_band"), std::string::npos);
-  MatcherConfig matcher;
-  matcher.scan_search.max_set = 0;
-  EXPECT_NE(matcher.Validate().find("scan_search_max_set"), std::string::npos);
+TEST(ScanSearch, ValidateNamesTheBadKey) {
+  EXPECT_EQ(ScanSearchConfig{}.Validate(), "");
+  ScanSearchConfig c;
+  c.resolution = 0.0;
+  EXPECT_NE(c.Validate().find("scan_search_resolution 0 out of range"), std::string::npos)
+      << c.Validate();
+  c = {};
+  c.band_high = c.band_low;
+  EXPECT_NE(c.Validate().find("band_high"), std::string::npos) << c.Validate();
+  c = {};
+  c.max_set = 0;
+  EXPECT_NE(c.Validate().find("max_set"), std::string::npos) << c.Validate();
+  c = {};
+  c.sigma = std::nan("");
+  EXPECT_NE(c.Validate().find("sigma"), std::string::npos) << c.Validate();
+  c = {};
+  c.distinct_yaw_deg = 200.0;
+  EXPECT_NE(c.Validate().find("distinct_yaw_deg"), std::string::npos) << c.Validate();
 }
 
 TEST(ScanSearch, IsDeterministic) {
-  const agraph::AGraph* g = Office();
-  if (!g) GTEST_SKIP() << "office.ifc could not be loaded";
-  const ScanSearch search(*g, ScanSearchConfig{});
-  const SyntheticSGraph view = OfficeView(*g, "Corridor", 5);
-  ASSERT_FALSE(view.graph.keyframes.empty());
-  const auto points = SliceInMap(view);
-  const int storey = g->rooms.front().storey;
-  const ScanSearchResult a = search.Search(points, storey), b = search.Search(points, storey);
+  const agraph::AGraph g = Building({LRoom(), LRoom({M_PI, {21.0, 6.0}})});
+  const ScanSearch search(g, {});
+  const auto points = Slice(g);
+  const auto a = search.Search(points, 0), b = search.Search(points, 0);
   ASSERT_EQ(a.set.size(), b.set.size());
   EXPECT_EQ(a.nodes, b.nodes);
-  for (size_t i = 0; i < a.set.size(); ++i) {
-    EXPECT_EQ(a.set[i].score, b.set[i].score);
-    EXPECT_EQ(a.set[i].bim_T_map.t, b.set[i].bim_T_map.t);
-    EXPECT_EQ(a.set[i].bim_T_map.yaw, b.set[i].bim_T_map.yaw);
+  EXPECT_EQ(a.best, b.best);
+  for (size_t k = 0; k < a.set.size(); ++k) {
+    EXPECT_EQ(a.set[k].score, b.set[k].score);
+    EXPECT_EQ(a.set[k].bim_T_map.yaw, b.set[k].bim_T_map.yaw);
+    EXPECT_EQ(a.set[k].bim_T_map.t, b.set[k].bim_T_map.t);
+  }
+}
+
+TEST(ScanSearch, EveryPoseOutsideTheSetScoresBelowTheMargin) {
+  const agraph::AGraph g = Building({LRoom(), LRoom({M_PI, {21.0, 6.0}}), Pillar()});
+  const ScanSearch search(g, {});
+  const auto points = Slice(g);
+  const auto r = search.Search(points, 0);
+  ASSERT_EQ(r.status, ScanSearchResult::Status::kOk) << r.reason;
+  for (const ScanPose& p : r.set) {
+    EXPECT_GE(search.Score(points, p.bim_T_map, 0), r.best - r.margin);
+    EXPECT_NEAR(search.Score(points, p.bim_T_map, 0), p.score, 1e-12);
+  }
+  // Poses anywhere over the storey, turned anyhow, 1 m or 10 deg from every pose of the set.
+  const std::uint64_t seed = testing::CampaignSeed(77);
+  std::printf("[ ScanSearch ] certificate seed %llu\n", static_cast<unsigned long long>(seed));
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> x(-2.0, 23.0), y(-2.0, 8.0), yaw(-M_PI, M_PI);
+  const Eigen::Vector2d c = Centroid(points);
+  int sampled = 0;
+  while (sampled < 2000) {
+    Pose2 pose;
+    pose.yaw = yaw(rng);
+    pose.t = Eigen::Vector2d(x(rng), y(rng)) - pose.R() * c;
+    bool far = true;
+    for (const ScanPose& p : r.set)
+      far = far && !Near(pose, p.bim_T_map, c, 1.0, 10.0 * M_PI / 180.0);
+    if (!far) continue;
+    ++sampled;
+    EXPECT_LT(search.Score(points, pose, 0), r.best - r.margin)
+        << "yaw " << pose.yaw << " t " << pose.t.transpose();
   }
 }
 

@@ -103,7 +103,7 @@ struct MatcherConfig {
   // else the two disagree and nothing is UNIQUE from them. Too many poses, too few points or no
   // walls at the slice's height: no set, the proposals as without it (graph_match says why).
   // Off by default: on one keyframe its set is still too large to decide on (a room's view fits
-  // 4-25 poses within the margin) and a search costs 0.1-0.4 s per storey (docs/matching.md).
+  // 2-25 poses within the margin) and searching five storeys takes up to 1.6 s (docs/matching.md).
   bool scan_proposals{false};
   ScanSearchConfig scan_search;
   // --- decision ---

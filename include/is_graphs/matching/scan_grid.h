@@ -1,54 +1,105 @@
 #pragma once
 
+// The pieces of ScanSearch (scan_search.h): the score grid of one storey with its max-pooled
+// pyramid, and the points of one search prepared on it (thinned, centred, rotated per yaw
+// interval), which gives every branch-and-bound node its upper bound. Public for the tests.
 #include <Eigen/Core>
-#include <Eigen/Geometry>
-#include <cstdint>
+#include <limits>
+#include <utility>
 #include <vector>
+
+#include "is_graphs/matching/rigid_fit.h"
 
 namespace is_graphs {
 namespace matching {
 
-/// A storey's wall-surfaces as a score grid: each cell holds exp(-d² / 2σ²) for d the distance
-/// from its centre to the nearest segment, quantized upwards to 1/255; and its max-pooled
-/// pyramid (Cartographer's precomputation grids): level h holds at every cell (u, v) the max of
-/// the cells [u, u + 2^h) x [v, v + 2^h), so the mean of level h over a scan's cells bounds the
-/// scan's score at every translation of that square. Cells beyond the grid (more than 4σ from
-/// every wall) count 0 (their true value is below e^-8).
+/// exp(-d² / 2σ²) of the distance d to the nearest segment, per cell of `resolution`. World cell
+/// (i, j) is [i r, (i+1) r) x [j r, (j+1) r), its value taken at its centre; 0 farther than 6σ
+/// from every segment and outside the grid. Level h of the pyramid holds, at cell (i, j), the
+/// max over the 2^h x 2^h cells from (i, j) up (Cartographer's precomputation grids).
 class ScanGrid {
  public:
-  ScanGrid() = default;
-  /// `segments`: pairs of 2-D end points; `levels` pyramid levels (1: the grid alone).
   ScanGrid(const std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>& segments,
            double resolution, double sigma, int levels);
 
-  bool empty() const { return width_ == 0; }
   int levels() const { return static_cast<int>(pyramid_.size()); }
   double resolution() const { return resolution_; }
-  /// The cell holding `p` (may lie outside the grid).
-  Eigen::Vector2i Cell(const Eigen::Vector2d& p) const;
-  /// The centre of cell `c`.
-  Eigen::Vector2d Centre(const Eigen::Vector2i& c) const;
-  /// The walls' extent in cells (first and last cell holding a wall's point).
-  const Eigen::AlignedBox2i& walls() const { return walls_; }
-  /// Level h's value at (u, v), 0..255 (0 beyond the grid).
-  int At(int level, int u, int v) const {
-    const Level& l = pyramid_[level];
-    const int x = u + l.pad, y = v + l.pad;
-    if (x < 0 || y < 0 || x >= l.width || y >= l.height) return 0;
-    return l.cells[static_cast<size_t>(y) * l.width + x];
+  /// The world cells of the walls' extent (min and max corner, inclusive).
+  Eigen::Vector2i walls_min() const { return walls_min_; }
+  Eigen::Vector2i walls_max() const { return walls_max_; }
+  /// The value of world cell (i, j) at pyramid level h (0: the score grid itself).
+  float At(int h, int i, int j) const {
+    const int a = i - origin_.x(), b = j - origin_.y();
+    if (static_cast<unsigned>(a) >= static_cast<unsigned>(size_.x()) ||
+        static_cast<unsigned>(b) >= static_cast<unsigned>(size_.y()))
+      return 0.0f;
+    return pyramid_[h][static_cast<size_t>(b) * size_.x() + a];
   }
+  /// The world cell holding world point p.
+  Eigen::Vector2i CellOf(const Eigen::Vector2d& p) const;
+
+  // The raw layout, for the tight loop of ScanProblem: cell (i, j) at index
+  // (j - origin.y) * size.x + (i - origin.x) of level h.
+  const float* level(int h) const { return pyramid_[h].data(); }
+  Eigen::Vector2i origin() const { return origin_; }
+  Eigen::Vector2i size() const { return size_; }
 
  private:
-  struct Level {
-    int pad{0};  // cells below 0 held (a window starting there reaches into the grid)
-    int width{0}, height{0};
-    std::vector<std::uint8_t> cells;
+  double resolution_;
+  Eigen::Vector2i origin_, size_, walls_min_, walls_max_;
+  std::vector<std::vector<float>> pyramid_;
+};
+
+/// The points of one search on one grid. Yaw step k is the angle k * yaw_step, k in
+/// [0, yaw_steps); translation cell (x, y) puts the points' centroid at (x r, y r) in B. A node of
+/// level l covers translation cells [x, x + 2^l) x [y, y + 2^l) and yaw steps
+/// [yaw, yaw + 2^yaw_level(l)); its bound is the mean over the points of the pyramid at the cell
+/// each point reaches first, at the level whose window holds every cell the point visits in the
+/// node: a true upper bound of every leaf under it. Level 0 (yaw_level 0) is a leaf: its exact
+/// score.
+class ScanProblem {
+ public:
+  struct Node {
+    int x{0}, y{0}, yaw{0}, level{0};
   };
-  double resolution_{0.05};
-  Eigen::Vector2d origin_{Eigen::Vector2d::Zero()};  // the corner of cell (0, 0)
-  int width_{0}, height_{0};
-  Eigen::AlignedBox2i walls_;
-  std::vector<Level> pyramid_;
+
+  /// `points` (in M, at least one) thinned to one per cell of the grid's resolution (their mean);
+  /// yaw step `yaw_step` (rad, 0: from the resolution and the points' reach).
+  ScanProblem(const ScanGrid& grid, const std::vector<Eigen::Vector2d>& points, double yaw_step);
+
+  /// The node's upper bound; once the points so far show it below `threshold`, a looser upper
+  /// bound still below it (the rest counted at 1) without scoring the rest.
+  double Bound(const Node& node, double threshold = -std::numeric_limits<double>::infinity()) const;
+  /// B_x_M of leaf (x, y, yaw).
+  Pose2 LeafPose(int x, int y, int yaw) const;
+  int yaw_steps() const { return yaw_steps_; }
+  double yaw_step() const { return yaw_step_; }
+  int yaw_level(int level) const { return yaw_level_[level]; }
+  int max_level() const { return static_cast<int>(yaw_level_.size()) - 1; }
+  const std::vector<Eigen::Vector2d>& points() const { return points_; }
+  const Eigen::Vector2d& centroid() const { return centroid_; }
+
+  /// Thinned to one point per cell of `resolution` (the mean of the cell's points), interleaved
+  /// (cell order taken with a stride of about 0.618 n) so that the first points of a bound spread
+  /// over the whole slice and a hopeless node shows it early.
+  static std::vector<Eigen::Vector2d> Thin(const std::vector<Eigen::Vector2d>& points,
+                                           double resolution);
+
+ private:
+  const ScanGrid& grid_;
+  std::vector<Eigen::Vector2d> points_;  // thinned
+  Eigen::Vector2d centroid_{Eigen::Vector2d::Zero()};
+  double yaw_step_{0.0};
+  int yaw_steps_{1};
+  std::vector<int> yaw_level_;   // per node level
+  std::vector<int> pool_level_;  // per node level: the pyramid level of its bound
+  // Per yaw level g and interval j (yaw steps [j 2^g, (j+1) 2^g)): the first cell each point
+  // visits, relative to the translation cell, as x and y; and their min and max over the points.
+  struct Rotated {
+    std::vector<int> x, y;
+    Eigen::Vector2i min, max;
+  };
+  std::vector<std::vector<Rotated>> rotated_;
 };
 
 }  // namespace matching

@@ -19,6 +19,8 @@
 namespace is_graphs {
 namespace matching {
 
+class ScanProblem;  // scan_grid.h
+
 struct ScanSearchConfig {
   double resolution{0.05};  // m: the finest cell of the wall grid and of the translation
   // A point at distance d from the nearest wall face scores exp(-d² / 2 sigma²); the score of a
@@ -49,11 +51,11 @@ struct ScanPose {
 struct ScanSearchResult {
   enum class Status { kOk, kNoWalls, kTooFewPoints, kTooMany };
   Status status{Status::kOk};
-  std::string reason;          // for every status but kOk: why, with its numbers
-  std::vector<ScanPose> set;   // best first, one per distinct pose; empty unless kOk
-  double best{0.0};            // the best pose's score
-  double margin{0.0};          // the margin used
-  long nodes{0};               // branch-and-bound nodes scored
+  std::string reason;         // for every status but kOk: why, with its numbers
+  std::vector<ScanPose> set;  // best first, one per distinct pose; empty unless kOk
+  double best{0.0};           // the best pose's score
+  double margin{0.0};         // the margin used
+  long nodes{0};              // branch-and-bound nodes scored
   double milliseconds{0.0};
 };
 
@@ -67,17 +69,28 @@ class ScanSearch {
   /// The set of B_x_M (yaw over the full turn) under which `points` (x, y in M) lie on the
   /// wall-surfaces of `storey` (an A-Graph storey id) within the margin of the best.
   ScanSearchResult Search(const std::vector<Eigen::Vector2d>& points, int storey) const;
-  /// The score of `points` under `bim_T_map` on `storey` (mean over the points; 0 for an
-  /// unknown storey or no points).
+  /// The score of `points` under `bim_T_map` on `storey` (mean over the points, thinned as
+  /// Search thins them: one per cell of `resolution`, their mean; 0 for an unknown storey or no
+  /// points). At a leaf of the search it is the leaf's score.
   double Score(const std::vector<Eigen::Vector2d>& points, const Pose2& bim_T_map,
                int storey) const;
   bool HasWalls(int storey) const;
   const ScanSearchConfig& config() const { return config_; }
 
+  // For tests and tools: the search's discretization and bounds (scan_grid.h).
+  /// The points prepared on `storey`'s grid (nullptr without walls or points); lives as long
+  /// as this ScanSearch.
+  std::unique_ptr<ScanProblem> Problem(const std::vector<Eigen::Vector2d>& points,
+                                       int storey) const;
+  /// The translation cells searched on `storey` (first and last, inclusive; the walls' extent
+  /// ± window_margin), false without walls.
+  bool TranslationCells(int storey, Eigen::Vector2i* first, Eigen::Vector2i* last) const;
+
  private:
   struct Grid;  // per storey: the score grid and its max-pooled pyramid (scan_search.cpp)
   ScanSearchConfig config_;
   std::map<int, std::shared_ptr<const Grid>> grids_;
+  std::map<int, double> elevations_;  // of every storey of the A-Graph, for the reasons
 };
 
 }  // namespace matching

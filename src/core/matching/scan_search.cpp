@@ -1,14 +1,13 @@
-// The certified scan search (scan_search.h): per storey a ScanGrid; per search the points
-// centred and thinned, rotated once per yaw into cell offsets (Cartographer's discrete scans);
-// a depth-first branch and bound over the centre's cell per yaw, children best first, pruned
-// below the best so far less the margin; the leaves within the margin clustered into poses.
 #include "is_graphs/matching/scan_search.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <map>
+#include <queue>
 #include <sstream>
-#include <unordered_set>
+#include <tuple>
 
 #include "is_graphs/matching/scan_grid.h"
 
@@ -16,235 +15,254 @@ namespace is_graphs {
 namespace matching {
 
 struct ScanSearch::Grid {
-  ScanGrid grid;
+  ScanGrid cells;
 };
 
 namespace {
 
-constexpr int kLevels = 7;  // the roots: squares of 64 cells (3.2 m at 0.05 m)
-constexpr int kTop = kLevels - 1;
-constexpr int kMaxPoints = 256;        // the points scored (thinned evenly beyond)
-constexpr long kMaxNodes = 1000000;    // more nodes scored: too many to certify (bounded cost)
-constexpr size_t kMaxLeaves = 200000;  // more leaves within the margin: too many
+constexpr int kPyramidLevels = 9;       // windows up to 256 cells; nodes up to level 7
+constexpr long kRootsWanted = 4096;     // the top node level: the first with fewer roots
+constexpr long kMaxNodes = 1'000'000;   // beyond: kTooMany (a flat score, never a guess)
+constexpr size_t kMaxLeaves = 200'000;  // leaves within the margin kept at once
 
-std::string Range(const char* key, double value, const char* range) {
-  std::ostringstream s;
-  s << "scan_search_" << key << " " << value << " out of range " << range;
-  return s.str();
+// "" when lo < value <= hi (lo_open) or lo <= value <= hi, else a message naming the key.
+std::string Check(const char* name, double value, double lo, double hi, bool lo_open,
+                  const char* unit) {
+  const bool ok = std::isfinite(value) && (lo_open ? value > lo : value >= lo) && value <= hi;
+  if (ok) return "";
+  std::ostringstream out;
+  out << "scan_search_" << name << " " << value << " out of range " << (lo_open ? "(" : "[") << lo
+      << ".." << hi << unit << "]";
+  return out.str();
 }
 
-struct Node {
-  int yaw, x, y, level;
-  int bound;  // Σ over the points of the level's values (0..255 each)
+struct Queued {
+  double bound;
+  ScanProblem::Node node;
+  bool operator<(const Queued& o) const { return bound < o.bound; }  // max-heap on the bound
+};
+
+struct Leaf {
+  double score;
+  int x, y, yaw;
 };
 
 }  // namespace
 
 std::string ScanSearchConfig::Validate() const {
-  if (!(resolution >= 0.01 && resolution <= 1.0))
-    return Range("resolution", resolution, "[0.01, 1] m");
-  if (!(sigma >= resolution * 0.5 && sigma <= 2.0))
-    return Range("sigma", sigma, "[resolution / 2, 2] m");
-  if (!(band_low >= -10.0 && band_low < band_high && band_high <= 20.0))
-    return Range("band_low", band_low, "[-10, band_high) m");
-  if (!(angular_step_deg >= 0.0 && angular_step_deg <= 10.0))
-    return Range("angular_step_deg", angular_step_deg, "[0, 10] deg");
-  if (!(margin > 0.0 && margin < 1.0)) return Range("margin", margin, "(0, 1)");
-  if (!(max_set >= 1 && max_set <= 10000)) return Range("max_set", max_set, "[1, 10000]");
-  if (!(min_points >= 3 && min_points <= 100000))
-    return Range("min_points", min_points, "[3, 100000]");
-  if (!(distinct_xy > 0.0 && distinct_xy <= 100.0))
-    return Range("distinct_xy", distinct_xy, "(0, 100] m");
-  if (!(distinct_yaw_deg > 0.0 && distinct_yaw_deg <= 180.0))
-    return Range("distinct_yaw_deg", distinct_yaw_deg, "(0, 180] deg");
-  if (!(window_margin >= 0.0 && window_margin <= 100.0))
-    return Range("window_margin", window_margin, "[0, 100] m");
+  const struct {
+    const char* name;
+    double value, lo, hi;
+    bool lo_open;
+    const char* unit;
+  } fields[] = {
+      {"resolution", resolution, 0.01, 1.0, true, " m"},
+      {"sigma", sigma, 0.005, 2.0, true, " m"},
+      {"band_low", band_low, -10.0, 10.0, false, " m"},
+      {"band_high", band_high, band_low, 20.0, true, " m"},
+      {"angular_step_deg", angular_step_deg, 0.0, 10.0, false, " deg"},
+      {"margin", margin, 0.0, 1.0, false, ""},
+      {"max_set", static_cast<double>(max_set), 1.0, 1e5, false, ""},
+      {"min_points", static_cast<double>(min_points), 3.0, 1e7, false, ""},
+      {"distinct_xy", distinct_xy, 0.0, 100.0, true, " m"},
+      {"distinct_yaw_deg", distinct_yaw_deg, 0.0, 180.0, true, " deg"},
+      {"window_margin", window_margin, 0.0, 100.0, false, " m"},
+  };
+  for (const auto& f : fields) {
+    const std::string why = Check(f.name, f.value, f.lo, f.hi, f.lo_open, f.unit);
+    if (!why.empty()) return why;
+  }
+  if (angular_step_deg > 0.0 && angular_step_deg < 0.01)
+    return Check("angular_step_deg", angular_step_deg, 0.01, 10.0, false, " deg (or 0)");
   return "";
 }
 
 ScanSearch::ScanSearch(const agraph::AGraph& graph, const ScanSearchConfig& config)
     : config_(config) {
   for (const agraph::Storey& st : graph.storeys) {
+    elevations_[st.id] = st.elevation;
+    const double lo = st.elevation + config.band_low, hi = st.elevation + config.band_high;
     std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> segments;
     for (const agraph::WallSurface& s : graph.surfaces)
-      if (s.storey == st.id && s.z_max >= st.elevation + config.band_low &&
-          s.z_min <= st.elevation + config.band_high)
+      if (s.storey == st.id && s.z_min <= hi && s.z_max >= lo && s.start.allFinite() &&
+          s.end.allFinite())
         segments.emplace_back(s.start, s.end);
-    auto grid = std::make_shared<Grid>();
-    grid->grid = ScanGrid(segments, config.resolution, config.sigma, kLevels);
-    grids_[st.id] = std::move(grid);
+    if (segments.empty()) continue;
+    grids_[st.id] = std::make_shared<const Grid>(
+        Grid{ScanGrid(segments, config.resolution, config.sigma, kPyramidLevels)});
   }
 }
 
-bool ScanSearch::HasWalls(int storey) const {
+bool ScanSearch::HasWalls(int storey) const { return grids_.count(storey) > 0; }
+
+bool ScanSearch::TranslationCells(int storey, Eigen::Vector2i* first, Eigen::Vector2i* last) const {
   const auto it = grids_.find(storey);
-  return it != grids_.end() && !it->second->grid.empty();
+  if (it == grids_.end()) return false;
+  const int m = static_cast<int>(std::ceil(config_.window_margin / config_.resolution - 1e-9));
+  *first = it->second->cells.walls_min() - Eigen::Vector2i::Constant(m);
+  *last = it->second->cells.walls_max() + Eigen::Vector2i::Constant(m);
+  return true;
+}
+
+std::unique_ptr<ScanProblem> ScanSearch::Problem(const std::vector<Eigen::Vector2d>& points,
+                                                 int storey) const {
+  const auto it = grids_.find(storey);
+  if (it == grids_.end()) return nullptr;
+  auto problem = std::make_unique<ScanProblem>(it->second->cells, points,
+                                               config_.angular_step_deg * M_PI / 180.0);
+  if (problem->points().empty()) return nullptr;
+  return problem;
 }
 
 double ScanSearch::Score(const std::vector<Eigen::Vector2d>& points, const Pose2& bim_T_map,
                          int storey) const {
-  if (!HasWalls(storey) || points.empty()) return 0.0;
-  const ScanGrid& g = grids_.at(storey)->grid;
-  long sum = 0;
-  for (const auto& p : points) {
-    const Eigen::Vector2i c = g.Cell(bim_T_map.Apply(p));
-    sum += g.At(0, c.x(), c.y());
+  const auto it = grids_.find(storey);
+  if (it == grids_.end()) return 0.0;
+  const ScanGrid& grid = it->second->cells;
+  const auto thinned = ScanProblem::Thin(points, config_.resolution);
+  if (thinned.empty()) return 0.0;
+  double sum = 0.0;
+  for (const auto& p : thinned) {
+    const Eigen::Vector2i c = grid.CellOf(bim_T_map.Apply(p));
+    sum += grid.At(0, c.x(), c.y());
   }
-  return sum / (255.0 * points.size());
+  return sum / static_cast<double>(thinned.size());
 }
 
 ScanSearchResult ScanSearch::Search(const std::vector<Eigen::Vector2d>& points, int storey) const {
-  const auto t0 = std::chrono::steady_clock::now();
-  ScanSearchResult out;
-  out.margin = config_.margin;
-  auto done = [&](ScanSearchResult::Status status, const std::string& reason) {
-    out.status = status;
-    out.reason = reason;
-    if (status != ScanSearchResult::Status::kOk) out.set.clear();
-    out.milliseconds =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return out;
+  const auto start = std::chrono::steady_clock::now();
+  ScanSearchResult result;
+  result.margin = config_.margin;
+  auto finish = [&](ScanSearchResult::Status status, const std::string& reason) {
+    result.status = status;
+    result.reason = reason;
+    if (status != ScanSearchResult::Status::kOk) result.set.clear();
+    result.milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
   };
+  std::ostringstream why;
   if (!HasWalls(storey)) {
-    std::ostringstream why;
-    why << "storey " << storey << " has no wall-surface between " << config_.band_low << " and "
-        << config_.band_high << " m above its elevation";
-    return done(ScanSearchResult::Status::kNoWalls, why.str());
+    const auto e = elevations_.find(storey);
+    if (e == elevations_.end())
+      why << "storey " << storey << " is not in the A-Graph";
+    else
+      why << "storey " << storey << " has no wall-surface spanning any of ["
+          << e->second + config_.band_low << ", " << e->second + config_.band_high << "] m (band "
+          << config_.band_low << ".." << config_.band_high << " m above its elevation " << e->second
+          << " m)";
+    return finish(ScanSearchResult::Status::kNoWalls, why.str());
   }
-  const ScanGrid& g = grids_.at(storey)->grid;
-  const double res = g.resolution();
-  // The points centred on their mean, one per cell of the grid, at most kMaxPoints.
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const auto& p : points) centre += p;
-  if (!points.empty()) centre /= static_cast<double>(points.size());
-  std::vector<Eigen::Vector2d> local;
-  std::unordered_set<long long> taken;
-  for (const auto& p : points) {
-    const Eigen::Vector2d q = p - centre;
-    const long long key = (static_cast<long long>(std::floor(q.x() / res)) << 32) ^
-                          (static_cast<long long>(std::floor(q.y() / res)) & 0xffffffffLL);
-    if (taken.insert(key).second) local.push_back(q);
+  const auto problem = Problem(points, storey);
+  const int n = problem ? static_cast<int>(problem->points().size()) : 0;
+  if (n < config_.min_points) {
+    why << n << " points (one per " << config_.resolution << " m cell, of " << points.size()
+        << " given) < min_points " << config_.min_points;
+    return finish(ScanSearchResult::Status::kTooFewPoints, why.str());
   }
-  if (static_cast<int>(local.size()) < config_.min_points) {
-    std::ostringstream why;
-    why << "too few slice points: " << local.size() << " distinct at " << res << " m (< "
-        << config_.min_points << ")";
-    return done(ScanSearchResult::Status::kTooFewPoints, why.str());
-  }
-  if (local.size() > static_cast<size_t>(kMaxPoints)) {
-    std::vector<Eigen::Vector2d> thinned;
-    for (int k = 0; k < kMaxPoints; ++k) thinned.push_back(local[k * local.size() / kMaxPoints]);
-    local.swap(thinned);
-  }
-  const int n = static_cast<int>(local.size());
-  double reach = 0.0;
-  for (const auto& q : local) reach = std::max(reach, q.norm());
-  double step = config_.angular_step_deg * M_PI / 180.0;
-  if (step <= 0.0)
-    step = std::acos(1.0 - res * res / (2.0 * std::max(reach, res) * std::max(reach, res)));
-  const int yaws = std::max(1, static_cast<int>(std::ceil(2.0 * M_PI / step)));
-  step = 2.0 * M_PI / yaws;
-  // Each yaw's cell offsets of the points from the centre's cell (Cartographer's discrete
-  // scans): a node's bound is the mean of its level's pooled values there.
-  std::vector<std::vector<Eigen::Vector2i>> offsets(yaws, std::vector<Eigen::Vector2i>(n));
-  for (int k = 0; k < yaws; ++k) {
-    const Eigen::Rotation2Dd r(k * step);
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Vector2d q = r * local[i] / res;
-      offsets[k][i] = {static_cast<int>(std::lround(q.x())), static_cast<int>(std::lround(q.y()))};
-    }
-  }
-  auto bound = [&](int yaw, int x, int y, int level) {
-    int sum = 0;
-    for (const Eigen::Vector2i& o : offsets[yaw]) sum += g.At(level, x + o.x(), y + o.y());
-    return sum;
+  const ScanProblem& p = *problem;
+
+  Eigen::Vector2i first, last;
+  TranslationCells(storey, &first, &last);
+  const Eigen::Vector2i extent = last - first + Eigen::Vector2i::Ones();
+
+  // The top level: the first whose roots are few enough (or the pyramid's last).
+  int top = 0;
+  auto roots = [&](int l) {
+    const long w = 1L << l, k = 1L << p.yaw_level(l);
+    return ((extent.x() + w - 1) / w) * ((extent.y() + w - 1) / w) * ((p.yaw_steps() + k - 1) / k);
   };
-  // The centre's cells searched: the walls' extent and window_margin around it.
-  const int pad = static_cast<int>(std::ceil(config_.window_margin / res));
-  const Eigen::Vector2i lo = g.walls().min() - Eigen::Vector2i::Constant(pad);
-  const Eigen::Vector2i hi = g.walls().max() + Eigen::Vector2i::Constant(pad);
-  const int top = kTop, side = 1 << top;
-  std::vector<Node> roots;
-  for (int k = 0; k < yaws; ++k)
-    for (int y = lo.y(); y <= hi.y(); y += side)
-      for (int x = lo.x(); x <= hi.x(); x += side)
-        roots.push_back({k, x, y, top, bound(k, x, y, top)});
-  out.nodes = static_cast<long>(roots.size());
-  std::stable_sort(roots.begin(), roots.end(),
-                   [](const Node& a, const Node& b) { return a.bound > b.bound; });
-  const int margin = static_cast<int>(std::floor(config_.margin * 255.0 * n));
-  int best = -1;
-  std::vector<Node> leaves, stack;
-  bool overflow = false;
-  for (const Node& root : roots) {
-    if (root.bound < best - margin) break;  // sorted: no later root can do better
-    stack.assign(1, root);
-    while (!stack.empty() && !overflow) {
-      const Node node = stack.back();
-      stack.pop_back();
-      if (node.bound < best - margin) continue;
-      if (node.level == 0) {
-        best = std::max(best, node.bound);
-        leaves.push_back(node);
-        overflow = leaves.size() > kMaxLeaves;
-        continue;
-      }
-      const int h = node.level - 1, half = 1 << h;
-      Node children[4];
-      int c = 0;
+  while (top < p.max_level() && roots(top) > kRootsWanted) ++top;
+
+  // Best-first: a node is expanded only while its bound is within the margin of the best leaf
+  // so far, so every node whose bound reaches final best - margin is expanded: the certificate.
+  std::priority_queue<Queued> queue;
+  std::vector<Leaf> leaves;
+  double best = -1.0;
+  size_t filtered_at = 1024;
+  auto visit = [&](const ScanProblem::Node& node) {
+    const double bound = p.Bound(node, best - config_.margin);
+    ++result.nodes;
+    if (node.level > 0) {
+      if (bound >= best - config_.margin) queue.push({bound, node});
+      return;
+    }
+    best = std::max(best, bound);
+    if (bound >= best - config_.margin) leaves.push_back({bound, node.x, node.y, node.yaw});
+    if (leaves.size() > 2 * filtered_at) {  // drop the leaves the best has left behind
+      leaves.erase(std::remove_if(leaves.begin(), leaves.end(),
+                                  [&](const Leaf& l) { return l.score < best - config_.margin; }),
+                   leaves.end());
+      filtered_at = std::max(filtered_at, leaves.size());
+    }
+  };
+  const int step_top = 1 << p.yaw_level(top);
+  for (int yaw = 0; yaw < p.yaw_steps(); yaw += step_top)
+    for (int y = first.y(); y <= last.y(); y += 1 << top)
+      for (int x = first.x(); x <= last.x(); x += 1 << top) visit({x, y, yaw, top});
+  while (!queue.empty()) {
+    const Queued q = queue.top();
+    queue.pop();
+    if (q.bound < best - config_.margin) break;  // so are all that remain
+    if (result.nodes > kMaxNodes || leaves.size() > kMaxLeaves) {
+      why << "the search gave up after " << result.nodes << " nodes and " << leaves.size()
+          << " leaves within the margin " << config_.margin << " (a score this flat has too many"
+          << " poses)";
+      result.best = best;
+      return finish(ScanSearchResult::Status::kTooMany, why.str());
+    }
+    const int l = q.node.level - 1, half = 1 << l;
+    const int yaw_end = std::min(q.node.yaw + (1 << p.yaw_level(l + 1)), p.yaw_steps());
+    for (int yaw = q.node.yaw; yaw < yaw_end; yaw += 1 << p.yaw_level(l))
       for (int dy = 0; dy < 2; ++dy)
         for (int dx = 0; dx < 2; ++dx) {
-          const int x = node.x + dx * half, y = node.y + dy * half;
-          if (x > hi.x() || y > hi.y()) continue;
-          children[c++] = {node.yaw, x, y, h, bound(node.yaw, x, y, h)};
+          const int x = q.node.x + dx * half, y = q.node.y + dy * half;
+          if (x <= last.x() && y <= last.y()) visit({x, y, yaw, l});
         }
-      out.nodes += c;
-      overflow = out.nodes > kMaxNodes;
-      // Best child last on the stack: searched first (an insertion sort of at most four).
-      for (int i = 1; i < c; ++i)
-        for (int k = i; k > 0 && children[k].bound < children[k - 1].bound; --k)
-          std::swap(children[k], children[k - 1]);
-      for (int i = 0; i < c; ++i)
-        if (children[i].bound >= best - margin) stack.push_back(children[i]);
-    }
-    if (overflow) break;
   }
-  if (overflow) {
-    std::ostringstream why;
-    why << "too many poses fit within the margin to certify: " << out.nodes << " nodes scored, "
-        << leaves.size() << " cells within it";
-    return done(ScanSearchResult::Status::kTooMany, why.str());
+  result.best = best;
+
+  // The leaves within the margin of the final best, best first, one pose per cluster: a leaf
+  // within distinct_xy and distinct_yaw_deg of a representative (its cluster's best) joins it.
+  leaves.erase(std::remove_if(leaves.begin(), leaves.end(),
+                              [&](const Leaf& l) { return l.score < best - config_.margin; }),
+               leaves.end());
+  std::sort(leaves.begin(), leaves.end(), [](const Leaf& a, const Leaf& b) {
+    return a.score != b.score ? a.score > b.score
+                              : std::tie(a.yaw, a.x, a.y) < std::tie(b.yaw, b.x, b.y);
+  });
+  const double r = config_.resolution, d = config_.distinct_xy;
+  const double dyaw = config_.distinct_yaw_deg * M_PI / 180.0;
+  std::vector<Leaf> reps;
+  std::map<std::pair<long, long>, std::vector<int>> buckets;  // reps by distinct_xy cell
+  for (const Leaf& leaf : leaves) {
+    const Eigen::Vector2d at(leaf.x * r, leaf.y * r);
+    const long bx = static_cast<long>(std::floor(at.x() / d));
+    const long by = static_cast<long>(std::floor(at.y() / d));
+    int joined = -1;
+    for (long i = bx - 1; i <= bx + 1; ++i)
+      for (long j = by - 1; j <= by + 1; ++j) {
+        const auto b = buckets.find({i, j});
+        if (b == buckets.end()) continue;
+        for (int k : b->second) {
+          const Leaf& rep = reps[k];
+          if ((joined < 0 || k < joined) &&
+              (Eigen::Vector2d(rep.x * r, rep.y * r) - at).norm() < d &&
+              AngleDistance(rep.yaw * p.yaw_step(), leaf.yaw * p.yaw_step()) < dyaw)
+            joined = k;
+        }
+      }
+    if (joined >= 0) continue;
+    buckets[{bx, by}].push_back(static_cast<int>(reps.size()));
+    reps.push_back(leaf);
   }
-  out.best = best / (255.0 * n);
-  // The leaves within the margin of the final best, clustered best first into distinct poses.
-  std::stable_sort(leaves.begin(), leaves.end(),
-                   [](const Node& a, const Node& b) { return a.bound > b.bound; });
-  const double distinct_yaw = config_.distinct_yaw_deg * M_PI / 180.0;
-  std::vector<std::pair<Eigen::Vector2d, double>> kept;  // centre in B, yaw
-  for (const Node& leaf : leaves) {
-    if (leaf.bound < best - margin) break;
-    const Eigen::Vector2d c = g.Centre({leaf.x, leaf.y});
-    const double yaw = leaf.yaw * step;
-    bool same = false;
-    for (const auto& [kc, kyaw] : kept)
-      if ((kc - c).norm() <= config_.distinct_xy &&
-          std::abs(std::remainder(kyaw - yaw, 2.0 * M_PI)) <= distinct_yaw)
-        same = true;
-    if (same) continue;
-    kept.emplace_back(c, yaw);
-    if (static_cast<int>(kept.size()) > config_.max_set) {
-      std::ostringstream why;
-      why << "more than " << config_.max_set << " distinct poses within " << config_.margin
-          << " of the best " << out.best;
-      return done(ScanSearchResult::Status::kTooMany, why.str());
-    }
-    ScanPose p;
-    p.bim_T_map.yaw = yaw;
-    p.bim_T_map.t = c - p.bim_T_map.R() * centre;
-    p.score = leaf.bound / (255.0 * n);
-    out.set.push_back(p);
+  if (static_cast<int>(reps.size()) > config_.max_set) {
+    why << reps.size() << " distinct poses within the margin " << config_.margin
+        << " of the best score " << best << " > max_set " << config_.max_set;
+    return finish(ScanSearchResult::Status::kTooMany, why.str());
   }
-  return done(ScanSearchResult::Status::kOk, "");
+  for (const Leaf& rep : reps) result.set.push_back({p.LeafPose(rep.x, rep.y, rep.yaw), rep.score});
+  return finish(ScanSearchResult::Status::kOk, "");
 }
 
 }  // namespace matching
